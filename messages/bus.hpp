@@ -1,0 +1,68 @@
+// The transport seam: an LCM instance built from a URL, publishing encoded messages and
+// delivering raw bytes (decode them with CheckedDecode). Unit tests build it on memq://.
+// Not thread-safe: one thread publishes and calls Handle().
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lcm {
+class LCM;
+class ReceiveBuffer;
+}  // namespace lcm
+
+namespace flagsim {
+
+class Bus {
+ public:
+  /// Raw bytes of one message on `channel`, exactly as received.
+  using Handler = std::function<void(const std::string& channel, const uint8_t* data, size_t size)>;
+
+  /// `url` "" means LCM_DEFAULT_URL, else LCM's default (udpm://239.255.76.67:7667?ttl=0).
+  /// Throws std::runtime_error naming the URL when LCM cannot start on it.
+  explicit Bus(const std::string& url);
+  ~Bus();
+  Bus(const Bus&) = delete;
+  Bus& operator=(const Bus&) = delete;
+
+  /// The URL after defaults: what `url` "" resolves to.
+  static std::string ResolveUrl(const std::string& url);
+  /// For a udpm:// URL without one, asks for a socket receive buffer of `bytes` (LCM drops
+  /// bursts with its default one); other URLs come back unchanged.
+  static std::string WithReceiveBuffer(const std::string& url, int64_t bytes);
+
+  void Publish(const std::string& channel, const uint8_t* data, size_t size);
+
+  template <class Message>
+  void Publish(const std::string& channel, const Message& message) {
+    scratch_.resize(static_cast<size_t>(message.getEncodedSize()));
+    message.encode(scratch_.data(), 0, static_cast<int>(scratch_.size()));
+    Publish(channel, scratch_.data(), scratch_.size());
+  }
+
+  /// `channel` may be a regular expression. `queue_capacity`: messages LCM holds for this
+  /// subscription between Handle() calls before it drops new ones.
+  void Subscribe(const std::string& channel, Handler handler, int queue_capacity = 30);
+
+  /// Waits up to `timeout_ms` for one message and dispatches it. Returns true if one was handled.
+  bool Handle(int timeout_ms);
+  /// Dispatches every message already waiting, without blocking.
+  void HandleAll();
+
+  uint64_t bytes_published() const { return bytes_published_; }
+  const std::string& url() const { return url_; }
+
+ private:
+  struct Subscriber;
+  std::string url_;
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::vector<std::unique_ptr<Subscriber>> subscribers_;
+  std::vector<uint8_t> scratch_;
+  uint64_t bytes_published_ = 0;
+};
+
+}  // namespace flagsim

@@ -1,0 +1,34 @@
+// Channel names: a prefix (default "FLAGSIM_", so several servers can share a bus) plus a name.
+#pragma once
+
+#include <string>
+
+namespace flagsim {
+
+struct Channels {
+  static constexpr const char* kDefaultPrefix = "FLAGSIM_";
+
+  explicit Channels(const std::string& prefix = kDefaultPrefix);
+
+  std::string prefix;
+  // client -> server
+  std::string wind;      ///< wind_command_t
+  std::string param;     ///< param_command_t
+  std::string camera;    ///< camera_command_t
+  std::string keyframe;  ///< keyframe_command_t
+  std::string refresh;   ///< refresh_request_t
+  // server -> clients
+  std::string ack;       ///< ack_t
+  std::string state;     ///< state_t
+  std::string tile;      ///< tile_t
+  std::string frame;     ///< frame_t
+  std::string params;    ///< params_t
+  std::string status;    ///< status_t
+
+  /// "FLAGSIM_WIND" -> "WIND"; a channel without the prefix comes back unchanged.
+  std::string Unprefixed(const std::string& channel) const;
+  /// A regular expression (LCM subscribe syntax) matching every channel with the prefix.
+  std::string AllChannels() const;
+};
+
+}  // namespace flagsim

@@ -1,0 +1,223 @@
+#include "parameter_table.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <type_traits>
+
+#include "sim/integrator.hpp"
+
+namespace flagsim {
+namespace {
+
+using sim::SimParams;
+
+/// A parameter stored in field `field` of member `group` of the scene.
+template <class Group, class Field>
+Parameter Make(std::string name, std::string unit, ParameterKind kind, double min_value,
+               double max_value, Group Scene::*group, Field Group::*field, std::string description) {
+  Parameter parameter;
+  parameter.name = std::move(name);
+  parameter.unit = std::move(unit);
+  parameter.kind = kind;
+  parameter.min_value = min_value;
+  parameter.max_value = max_value;
+  parameter.description = std::move(description);
+  parameter.get = [group, field](const Scene& scene) { return static_cast<double>(scene.*group.*field); };
+  parameter.set = [group, field](Scene& scene, double value) {
+    if constexpr (std::is_floating_point_v<Field>) {
+      scene.*group.*field = value;
+    } else {
+      scene.*group.*field = static_cast<Field>(std::llround(value));
+    }
+  };
+  return parameter;
+}
+
+template <class Field>
+Parameter Real(std::string name, std::string unit, double min_value, double max_value,
+               Field SimParams::*field, std::string description) {
+  return Make(std::move(name), std::move(unit), ParameterKind::kReal, min_value, max_value,
+              &Scene::sim, field, std::move(description));
+}
+
+Parameter Integer(std::string name, double min_value, double max_value, int SimParams::*field,
+                  std::string description) {
+  return Make(std::move(name), "", ParameterKind::kInteger, min_value, max_value, &Scene::sim,
+              field, std::move(description));
+}
+
+std::string FormatNumber(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);  // shortest exact
+  return std::string(buffer, result.ptr);
+}
+
+/// Reads all of `text` as a number; false if anything is left over or nothing was read.
+bool ParseNumber(const std::string& text, double* value) {
+  const char* end = text.data() + text.size();
+  const auto result = std::from_chars(text.data(), end, *value);
+  return result.ec == std::errc() && result.ptr == end;
+}
+
+bool ParseBoolean(const std::string& text, double* value) {
+  for (const char* yes : {"true", "1", "on", "yes"}) {
+    if (text == yes) return *value = 1, true;
+  }
+  for (const char* no : {"false", "0", "off", "no"}) {
+    if (text == no) return *value = 0, true;
+  }
+  return false;
+}
+
+/// Parses `text` as a value of `parameter`; "" or what is wrong with it.
+std::string Parse(const Parameter& parameter, const std::string& text, double* value) {
+  switch (parameter.kind) {
+    case ParameterKind::kBoolean:
+      return ParseBoolean(text, value) ? "" : "'" + text + "' is not a switch";
+    case ParameterKind::kChoice:
+      for (size_t i = 0; i < parameter.choices.size(); ++i) {
+        if (text == parameter.choices[i]) return *value = double(i), "";
+      }
+      return "'" + text + "' is not a known name";
+    case ParameterKind::kInteger: {
+      long long integer = 0;
+      const char* end = text.data() + text.size();
+      const auto result = std::from_chars(text.data(), end, integer);
+      if (result.ec != std::errc() || result.ptr != end) return "'" + text + "' is not an integer";
+      *value = double(integer);
+      return "";
+    }
+    case ParameterKind::kReal:
+      if (!ParseNumber(text, value)) return "'" + text + "' is not a number";
+      if (!std::isfinite(*value)) return "'" + text + "' is not a finite number";
+      return "";
+  }
+  return "unknown kind";
+}
+
+}  // namespace
+
+std::string Parameter::Format(double value) const {
+  switch (kind) {
+    case ParameterKind::kBoolean: return value != 0 ? "true" : "false";
+    case ParameterKind::kChoice: {
+      const auto index = static_cast<size_t>(value);
+      return index < choices.size() ? choices[index] : FormatNumber(value);
+    }
+    case ParameterKind::kInteger:
+    case ParameterKind::kReal: break;
+  }
+  return FormatNumber(value);
+}
+
+std::string Parameter::AllowedText() const {
+  switch (kind) {
+    case ParameterKind::kBoolean: return "true or false";
+    case ParameterKind::kChoice: {
+      std::string text = "one of:";
+      for (size_t i = 0; i < choices.size(); ++i) text += (i ? ", " : " ") + choices[i];
+      return text;
+    }
+    case ParameterKind::kInteger:
+    case ParameterKind::kReal: break;
+  }
+  return FormatNumber(min_value) + " .. " + FormatNumber(max_value) + (unit.empty() ? "" : " " + unit);
+}
+
+ParameterTable::ParameterTable() {
+  parameters_ = {
+      Integer("cols", 2, 512, &SimParams::cols, "nodes along the flag; a change rebuilds the flag"),
+      Integer("rows", 2, 512, &SimParams::rows, "nodes down the flag; a change rebuilds the flag"),
+      Real("width", "m", 0.1, 10, &SimParams::width, "flag length along its rows (fly)"),
+      Real("height", "m", 0.1, 10, &SimParams::height, "flag length down its columns (hoist)"),
+      Real("mass", "kg", 0.001, 100, &SimParams::mass, "mass of the whole flag"),
+      Real("pole_height", "m", 0.5, 50, &SimParams::pole_height, "height of the pole's top"),
+      Real("stiffness", "N/m", 1, 100000, &SimParams::stiffness,
+           "structural stretch modulus of the sheet (springs to row and column neighbours)"),
+      Real("shear_stiffness", "N/m", 0, 100000, &SimParams::shear_stiffness,
+           "shear modulus of the sheet (diagonal springs)"),
+      Real("bend_stiffness", "N/m", 0, 100000, &SimParams::bend_stiffness,
+           "bending modulus of the sheet (springs between nodes two apart)"),
+      Real("damping", "N s/m", 0, 100, &SimParams::damping, "damping along every spring"),
+      Real("friction", "1/s", 0, 100, &SimParams::friction,
+           "air friction -friction m v per node (seed integrator: fraction mu of F, below 1)"),
+      Real("wind_coefficient", "N s/m^3", 0, 100, &SimParams::wind_coefficient,
+           "C in the face wind force C A n (n . w)"),
+      Make("relative_wind", "", ParameterKind::kBoolean, 0, 1, &Scene::sim, &SimParams::relative_wind,
+           "wind relative to the moving cloth (w - v_face) instead of w"),
+      Real("gravity", "m/s^2", 0, 100, &SimParams::gravity, "downward acceleration of gravity"),
+      Real("dt", "s", 1e-5, 0.05, &SimParams::dt,
+           "step: commands apply between steps; explicit integrators substep for stability"),
+      Make("integrator", "", ParameterKind::kChoice, 0, double(sim::IntegratorNames().size() - 1),
+           &Scene::sim, &SimParams::integrator, "time integrator"),
+      Integer("threads", 1, 64, &SimParams::threads, "worker threads for forces and integration"),
+      Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, &Scene::service,
+           &ServiceSettings::state_rate, "STATE messages per second"),
+  };
+  for (Parameter& parameter : parameters_) {
+    if (parameter.kind == ParameterKind::kChoice) parameter.choices = sim::IntegratorNames();
+  }
+}
+
+const ParameterTable& ParameterTable::Get() {
+  static const ParameterTable table;
+  return table;
+}
+
+const Parameter* ParameterTable::Find(const std::string& name) const {
+  for (const Parameter& parameter : parameters_) {
+    if (parameter.name == name) return &parameter;
+  }
+  return nullptr;
+}
+
+std::string ParameterTable::Assign(const std::string& name, const std::string& text, Scene* scene) const {
+  const Parameter* parameter = Find(name);
+  if (parameter == nullptr) {
+    std::string known;
+    for (const Parameter& each : parameters_) known += (known.empty() ? "" : ", ") + each.name;
+    return "unknown parameter '" + name + "'; known: " + known;
+  }
+  double value = 0;
+  std::string problem = Parse(*parameter, text, &value);
+  if (problem.empty() && (value < parameter->min_value || value > parameter->max_value)) {
+    problem = text + " is out of range";
+  }
+  if (!problem.empty()) return name + ": " + problem + "; allowed " + parameter->AllowedText();
+  parameter->set(*scene, value);
+  return "";
+}
+
+std::string ParameterTable::CheckConsistency(const Scene& scene) {
+  if (scene.sim.integrator == sim::IntegratorKind::kSeed && scene.sim.friction >= 1) {
+    return "friction: the seed integrator reads friction as a fraction mu of the force; allowed "
+           "0 .. 1 (exclusive) with integrator=seed";
+  }
+  return "";
+}
+
+std::string ParameterTable::CheckWind(const sim::WindSettings& wind) {
+  const char* axis[3] = {"x", "y", "z"};
+  double speed_squared = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(wind.velocity[k])) {
+      return std::string("velocity.") + axis[k] + ": " + FormatNumber(wind.velocity[k]) +
+             " is not a finite number; allowed a speed up to " + FormatNumber(kMaxWindSpeed) + " m/s";
+    }
+    speed_squared += wind.velocity[k] * wind.velocity[k];
+  }
+  if (std::sqrt(speed_squared) > kMaxWindSpeed) {
+    return "velocity: speed " + FormatNumber(std::sqrt(speed_squared)) + " m/s is out of range; allowed 0 .. " +
+           FormatNumber(kMaxWindSpeed) + " m/s";
+  }
+  if (!(wind.gust >= 0 && wind.gust <= kMaxGust)) {
+    return "gust: " + FormatNumber(wind.gust) + " is out of range; allowed 0 .. " + FormatNumber(kMaxGust);
+  }
+  if (!(wind.ramp_time >= 0 && wind.ramp_time <= kMaxRampTime)) {
+    return "ramp_time: " + FormatNumber(wind.ramp_time) + " is out of range; allowed 0 .. " +
+           FormatNumber(kMaxRampTime) + " s";
+  }
+  return "";
+}
+
+}  // namespace flagsim

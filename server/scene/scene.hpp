@@ -1,0 +1,26 @@
+// A scene: everything a session starts from. Defaults are the "breeze" preset; scene files
+// (scene_file.hpp) and PARAM commands override fields through the parameter table.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "sim/sim_params.hpp"
+#include "sim/wind_field.hpp"
+
+namespace flagsim {
+
+struct ServiceSettings {
+  double state_rate = 60.0;  ///< Hz, STATE messages per second of wall time
+};
+
+struct Scene {
+  std::string name = "breeze";
+  std::string description = "A steady breeze with light gusts.";
+  uint64_t seed = 1;           ///< gust noise seed
+  sim::SimParams sim;
+  sim::WindSettings wind;
+  ServiceSettings service;
+};
+
+}  // namespace flagsim

@@ -1,0 +1,33 @@
+// Scene files: TOML, human-written. Every key is optional and overrides the defaults of Scene;
+// parameters are checked by the parameter table exactly as PARAM commands are.
+//
+//   name = "gale"                      description = "..."            seed = 3
+//   [parameters]   any name of the parameter table, e.g.  stiffness = 4000
+//   [wind]         velocity = [vx, vy, vz] (m/s)   gust = 0.4   ramp_time = 0 (s)
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace flagsim {
+
+/// A scene file that cannot be read, or says something not allowed.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Parses TOML text; `source` names it in errors. Throws SceneError.
+Scene ParseScene(const std::string& text, const std::string& source);
+
+/// A preset name ("breeze", "calm", "gale", "hanging") or a path to a .toml file.
+Scene LoadScene(const std::string& preset_or_path);
+
+/// The presets built into the binary, by name.
+std::vector<std::string> PresetNames();
+std::string PresetText(const std::string& name);  ///< "" if there is no such preset
+
+}  // namespace flagsim

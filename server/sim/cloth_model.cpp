@@ -1,0 +1,105 @@
+#include "cloth_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace flagsim::sim {
+namespace {
+
+/// A node's share of the flag's area, in units of one cell: 1 inside, 1/2 on an edge,
+/// 1/4 at a corner (bilinear lumping).
+double AreaShare(int r, int c, int rows, int cols) {
+  const double along = (c == 0 || c == cols - 1) ? 0.5 : 1.0;
+  const double down = (r == 0 || r == rows - 1) ? 0.5 : 1.0;
+  return along * down;
+}
+
+}  // namespace
+
+template <typename Real>
+void SetSpringConstants(const SimParams& params, ClothModel<Real>* model) {
+  const double cell_area = double(model->dx) * double(model->dy);
+  for (SpringFamily<Real>& family : model->families) {
+    const double modulus = family.kind == SpringKind::kStructural ? params.stiffness
+                           : family.kind == SpringKind::kShear    ? params.shear_stiffness
+                                                                  : params.bend_stiffness;
+    // A spring stands for a strip of sheet dx dy / L wide and L long: k = modulus dx dy / L^2.
+    const double L = double(family.rest_length);
+    const double scale = cell_area / (L * L);
+    family.stiffness = Real(modulus * scale);
+    family.damping = Real(params.damping * scale);
+  }
+}
+
+template <typename Real>
+ClothModel<Real> BuildClothModel(const SimParams& params) {
+  ClothModel<Real> model;
+  model.cols = params.cols;
+  model.rows = params.rows;
+  const double dx = params.width / (params.cols - 1);
+  const double dy = params.height / (params.rows - 1);
+  model.dx = Real(dx);
+  model.dy = Real(dy);
+  model.pole_top = {0.0, params.pole_height, 0.0};
+
+  const double diagonal = std::hypot(dx, dy);
+  model.families = {
+      {SpringKind::kStructural, 0, 1, Real(dx), 0, 0}, {SpringKind::kStructural, 1, 0, Real(dy), 0, 0},
+      {SpringKind::kShear, 1, 1, Real(diagonal), 0, 0}, {SpringKind::kShear, 1, -1, Real(diagonal), 0, 0},
+      {SpringKind::kBend, 0, 2, Real(2 * dx), 0, 0},    {SpringKind::kBend, 2, 0, Real(2 * dy), 0, 0}};
+  SetSpringConstants(params, &model);
+
+  const int n = model.num_nodes();
+  const double density = params.mass / (params.width * params.height);  // kg/m^2
+  const double top = params.pole_height - 0.02;  // the top edge hangs just below the finial
+  model.mass.resize(n);
+  model.inverse_mass.resize(n);
+  model.rest_x.resize(n);
+  model.rest_y.resize(n);
+  model.rest_z.resize(n);
+  for (int r = 0; r < params.rows; ++r) {
+    for (int c = 0; c < params.cols; ++c) {
+      const int i = model.index(r, c);
+      model.mass[i] = Real(density * dx * dy * AreaShare(r, c, params.rows, params.cols));
+      model.inverse_mass[i] = c == 0 ? Real(0) : Real(1) / model.mass[i];  // hoist edge pinned
+      model.rest_x[i] = Real(c * dx);
+      model.rest_y[i] = Real(top - r * dy);
+      model.rest_z[i] = Real(0);
+    }
+  }
+  return model;
+}
+
+template <typename Real>
+FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double friction) {
+  // Row sums of K and C per node: each spring adds its constant to both of its nodes.
+  std::vector<double> stiffness_sum(model.num_nodes(), 0.0), damping_sum(model.num_nodes(), 0.0);
+  for (const SpringFamily<Real>& family : model.families) {
+    for (int r = 0; r + family.dr < model.rows; ++r) {
+      for (int c = family.first_col(); c < family.end_col(model.cols); ++c) {
+        const int a = model.index(r, c), b = model.index(r + family.dr, c + family.dc);
+        stiffness_sum[a] += family.stiffness;
+        stiffness_sum[b] += family.stiffness;
+        damping_sum[a] += family.damping;
+        damping_sum[b] += family.damping;
+      }
+    }
+  }
+  FrequencyBound bound;
+  for (int i = 0; i < model.num_nodes(); ++i) {
+    if (model.pinned(i)) continue;
+    const double inverse_mass = model.inverse_mass[i];
+    bound.omega_squared = std::max(bound.omega_squared, 2 * stiffness_sum[i] * inverse_mass);
+    bound.damping_rate = std::max(bound.damping_rate, 2 * damping_sum[i] * inverse_mass + friction);
+  }
+  return bound;
+}
+
+template ClothModel<float> BuildClothModel<float>(const SimParams&);
+template ClothModel<double> BuildClothModel<double>(const SimParams&);
+template void SetSpringConstants<float>(const SimParams&, ClothModel<float>*);
+template void SetSpringConstants<double>(const SimParams&, ClothModel<double>*);
+template FrequencyBound EstimateFrequencyBound<float>(const ClothModel<float>&, double);
+template FrequencyBound EstimateFrequencyBound<double>(const ClothModel<double>&, double);
+
+}  // namespace flagsim::sim

@@ -1,0 +1,79 @@
+// The fixed part of the flag: its grid, springs, masses and pinned nodes. Built once from
+// SimParams; the state (cloth_state.hpp) is what a step changes.
+//
+// Grid: node (r, c) has index r * cols + c; row 0 is the top edge, column 0 the hoist edge on
+// the pole. At rest the flag lies in the x-y plane: node (r, c) at (c dx, top - r dy, 0).
+// Faces: each cell (r, c) is cut into two triangles,
+//   upper (r, c) (r+1, c) (r, c+1)  and  lower (r+1, c) (r+1, c+1) (r, c+1),
+// both wound so that their normal is +z at rest.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "sim_params.hpp"
+
+namespace flagsim::sim {
+
+enum class SpringKind { kStructural, kShear, kBend };
+
+/// All springs of one kind and direction on a grid: node (r, c) to node (r + dr, c + dc),
+/// wherever both exist. A uniform grid gives every spring of a family the same constants, so
+/// the force loops run over rows of the grid with no spring list and no pointers.
+template <typename Real>
+struct SpringFamily {
+  SpringKind kind = SpringKind::kStructural;
+  int dr = 0;                ///< row offset of the far node (>= 0)
+  int dc = 0;                ///< column offset of the far node
+  Real rest_length = 0;      ///< m
+  Real stiffness = 0;        ///< N/m, per spring
+  Real damping = 0;          ///< N s/m, per spring
+
+  int first_col() const { return dc < 0 ? -dc : 0; }  ///< columns whose far node exists
+  int end_col(int cols) const { return dc > 0 ? cols - dc : cols; }
+};
+
+template <typename Real>
+struct ClothModel {
+  int cols = 0;
+  int rows = 0;
+  Real dx = 0;                    ///< m, rest spacing along rows
+  Real dy = 0;                    ///< m, rest spacing down columns
+  std::array<double, 3> pole_top{};  ///< m, world frame; the pole runs from (0,0,0) to here
+
+  /// Structural (0,1) (1,0); shear (1,1) (1,-1); bend (0,2) (2,0).
+  std::vector<SpringFamily<Real>> families;
+
+  std::vector<Real> mass;           ///< kg per node: the flag's mass shared by area
+  std::vector<Real> inverse_mass;   ///< 1/kg per node; 0 for nodes pinned to the pole
+
+  /// Rest positions, m: where the flag starts and where pinned nodes stay.
+  std::vector<Real> rest_x, rest_y, rest_z;
+
+  int num_nodes() const { return cols * rows; }
+  int num_cells() const { return (cols - 1) * (rows - 1); }
+  int index(int r, int c) const { return r * cols + c; }
+  bool pinned(int node) const { return inverse_mass[node] == Real(0); }
+};
+
+/// Builds the model of `params`: grid, spring constants, lumped masses, pinned hoist edge.
+template <typename Real>
+ClothModel<Real> BuildClothModel(const SimParams& params);
+
+/// Updates the spring constants only (stiffness, damping): what a parameter change needs when
+/// the grid and masses stay.
+template <typename Real>
+void SetSpringConstants(const SimParams& params, ClothModel<Real>* model);
+
+/// An upper bound on the grid's highest angular frequencies, from Gershgorin's theorem on the
+/// stiffness and damping matrices scaled by 1/m: max over nodes of sum_j 2 k_ij / m_i, and of
+/// sum_j 2 c_ij / m_i + friction. Used to choose stable explicit steps.
+struct FrequencyBound {
+  double omega_squared = 0;  ///< (rad/s)^2, >= the largest eigenvalue of M^-1 K
+  double damping_rate = 0;   ///< 1/s, >= the largest eigenvalue of M^-1 C
+};
+template <typename Real>
+FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double friction);
+
+}  // namespace flagsim::sim

@@ -1,0 +1,40 @@
+// The mutable part of the flag: node positions and velocities (structure of arrays, so that
+// force loops over a grid row run on contiguous memory), and the clock.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cloth_model.hpp"
+
+namespace flagsim::sim {
+
+template <typename Real>
+struct ClothState {
+  std::vector<Real> x, y, z;     ///< m, world frame, per node
+  std::vector<Real> vx, vy, vz;  ///< m/s, per node
+  double time = 0;               ///< s, simulated
+  int64_t step = 0;              ///< steps taken
+
+  int num_nodes() const { return static_cast<int>(x.size()); }
+};
+
+/// The flag flat at its rest positions, at rest, at time 0.
+template <typename Real>
+ClothState<Real> RestState(const ClothModel<Real>& model) {
+  ClothState<Real> state;
+  state.x = model.rest_x;
+  state.y = model.rest_y;
+  state.z = model.rest_z;
+  state.vx.assign(model.num_nodes(), Real(0));
+  state.vy.assign(model.num_nodes(), Real(0));
+  state.vz.assign(model.num_nodes(), Real(0));
+  return state;
+}
+
+/// FNV-1a 64 over the bits of positions then velocities: equal hashes mean equal states, bit
+/// for bit. Time and step are not included (they are published beside the hash).
+template <typename Real>
+uint64_t StateHash(const ClothState<Real>& state);
+
+}  // namespace flagsim::sim

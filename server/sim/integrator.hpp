@@ -1,0 +1,43 @@
+// Time integrators over one force law. Each advances the state by one substep h; the
+// simulation picks h from the integrator's stability limit and the grid's frequency bound.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cloth_model.hpp"
+#include "cloth_state.hpp"
+#include "forces.hpp"
+#include "sim_params.hpp"
+#include "wind_field.hpp"
+
+namespace flagsim::sim {
+
+/// What a substep reads besides the state.
+template <typename Real>
+struct StepContext {
+  const ClothModel<Real>& model;
+  const SimParams& params;
+  const WindField& wind;
+  ForceEvaluator<Real>& evaluator;
+};
+
+template <typename Real>
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  /// (x, v, t) => (x, v, t + h). Pinned nodes keep their positions and zero velocity.
+  virtual void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) = 0;
+  /// The largest stable h for a grid whose frequencies are bounded by `bound`; +inf if none.
+  virtual double StableStep(const FrequencyBound& bound) const = 0;
+};
+
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind);
+
+/// Names as PARAM and scene files spell them, in IntegratorKind order.
+const std::vector<std::string>& IntegratorNames();
+std::string IntegratorName(IntegratorKind kind);
+
+}  // namespace flagsim::sim

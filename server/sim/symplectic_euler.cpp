@@ -1,0 +1,68 @@
+// Symplectic (semi-implicit) Euler, and the seed's scheme, which is the same update with the
+// seed's friction law.
+//   v <- v + h M^-1 F(x, v, t);  x <- x + h v
+// Stability on x'' = -w^2 x - g x' (the update matrix has trace 2 - h^2 w^2 - h g and
+// determinant 1 - h g; Jury's test): h^2 w^2 + 2 h g < 4, so h < (sqrt(g^2 + 4 w^2) - g) / w^2,
+// which is 2 / w without damping.
+#include <cmath>
+#include <limits>
+
+#include "integrator.hpp"
+
+namespace flagsim::sim {
+namespace {
+
+template <typename Real>
+class SymplecticEuler : public Integrator<Real> {
+ public:
+  /// `seed_friction`: scale forces by the seed's 1 - mu (its friction F_fric = -mu F).
+  explicit SymplecticEuler(bool seed_friction) : seed_friction_(seed_friction) {}
+
+  void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) override {
+    context.evaluator.Evaluate(context.model, context.params, context.wind, *state, state->time, &forces_);
+    const Real scale = seed_friction_ ? Real(1 - context.params.friction) : Real(1);
+    const Real step = Real(h);
+    const int rows = context.model.rows, cols = context.model.cols;
+#pragma omp parallel for schedule(static) num_threads(context.params.threads) if (context.params.threads > 1)
+    for (int r = 0; r < rows; ++r) {
+      for (int i = r * cols; i < (r + 1) * cols; ++i) {
+        const Real a = step * scale * context.model.inverse_mass[i];
+        state->vx[i] += a * forces_.x[i];
+        state->vy[i] += a * forces_.y[i];
+        state->vz[i] += a * forces_.z[i];
+        state->x[i] += step * state->vx[i];
+        state->y[i] += step * state->vy[i];
+        state->z[i] += step * state->vz[i];
+      }
+    }
+    state->time += h;
+  }
+
+  double StableStep(const FrequencyBound& bound) const override {
+    const double w2 = bound.omega_squared, g = bound.damping_rate;
+    if (w2 <= 0) return std::numeric_limits<double>::infinity();
+    return (std::sqrt(g * g + 4 * w2) - g) / w2;
+  }
+
+ private:
+  bool seed_friction_;
+  NodeForces<Real> forces_;
+};
+
+}  // namespace
+
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind) {
+  return std::make_unique<SymplecticEuler<Real>>(kind == IntegratorKind::kSeed);
+}
+template std::unique_ptr<Integrator<float>> MakeIntegrator<float>(IntegratorKind);
+template std::unique_ptr<Integrator<double>> MakeIntegrator<double>(IntegratorKind);
+
+const std::vector<std::string>& IntegratorNames() {
+  static const std::vector<std::string> names = {"symplectic_euler", "seed"};
+  return names;
+}
+
+std::string IntegratorName(IntegratorKind kind) { return IntegratorNames()[static_cast<int>(kind)]; }
+
+}  // namespace flagsim::sim

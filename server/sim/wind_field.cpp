@@ -1,0 +1,70 @@
+#include "wind_field.hpp"
+
+#include <cmath>
+
+namespace flagsim::sim {
+namespace {
+
+/// splitmix64's finaliser: a well-mixed 64-bit hash of one integer.
+uint64_t Mix(uint64_t value) {
+  value += 0x9e3779b97f4a7c15ull;
+  value = (value ^ (value >> 30)) * 0xbf58476d1ce4e5b9ull;
+  value = (value ^ (value >> 27)) * 0x94d049bb133111ebull;
+  return value ^ (value >> 31);
+}
+
+double LatticeValue(uint64_t seed, int64_t i) {
+  const uint64_t bits = Mix(seed ^ Mix(static_cast<uint64_t>(i)));
+  return double(bits >> 11) * (2.0 / 9007199254740992.0) - 1.0;  // 53 bits -> [-1, 1)
+}
+
+}  // namespace
+
+double ValueNoise(uint64_t seed, double u) {
+  const double cell = std::floor(u);
+  const double f = u - cell;
+  const double blend = f * f * f * (f * (f * 6 - 15) + 10);  // C2-continuous
+  const int64_t i = static_cast<int64_t>(cell);
+  const double a = LatticeValue(seed, i), b = LatticeValue(seed, i + 1);
+  return a + (b - a) * blend;
+}
+
+WindField::WindField(const WindSettings& settings, uint64_t seed)
+    : from_(settings), to_(settings), seed_(seed) {}
+
+void WindField::Set(const WindSettings& settings, double now) {
+  from_.velocity = Mean(now);
+  from_.gust = Gust(now);
+  to_ = settings;
+  ramp_start_ = now;
+}
+
+double WindField::RampFraction(double t) const {
+  if (to_.ramp_time <= 0) return 1.0;
+  const double fraction = (t - ramp_start_) / to_.ramp_time;
+  return fraction < 0 ? 0.0 : fraction > 1 ? 1.0 : fraction;
+}
+
+Vec3 WindField::Mean(double t) const {
+  const double a = RampFraction(t);
+  Vec3 mean;
+  for (int k = 0; k < 3; ++k) mean[k] = from_.velocity[k] + a * (to_.velocity[k] - from_.velocity[k]);
+  return mean;
+}
+
+double WindField::Gust(double t) const {
+  const double a = RampFraction(t);
+  return from_.gust + a * (to_.gust - from_.gust);
+}
+
+Vec3 WindField::At(double t, double s) const {
+  Vec3 wind = Mean(t);
+  const double speed = std::sqrt(wind[0] * wind[0] + wind[1] * wind[1] + wind[2] * wind[2]);
+  const double amplitude = Gust(t) * speed;
+  if (amplitude == 0) return wind;
+  const double u = (speed * t - s) / kGustLength;
+  for (int k = 0; k < 3; ++k) wind[k] += amplitude * ValueNoise(seed_ + 0x51ed27 * (k + 1), u);
+  return wind;
+}
+
+}  // namespace flagsim::sim

@@ -1,0 +1,51 @@
+// The wind the flag sees: a mean velocity that ramps from one setting to the next in simulated
+// time, plus gusts of seeded, smooth noise that travel down the flag with the mean wind.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace flagsim::sim {
+
+using Vec3 = std::array<double, 3>;
+
+struct WindSettings {
+  Vec3 velocity{6.0, 0.0, 1.5};  ///< m/s, world frame
+  double gust = 0.2;             ///< gust strength, fraction of |velocity|
+  double ramp_time = 0.0;        ///< s, simulated time to reach this setting from the last one
+};
+
+class WindField {
+ public:
+  explicit WindField(const WindSettings& settings = {}, uint64_t seed = 1);
+
+  /// From time `now`, move linearly from the current wind to `settings` over its ramp_time.
+  void Set(const WindSettings& settings, double now);
+
+  /// The mean wind at time t (the ramp applied), m/s.
+  Vec3 Mean(double t) const;
+  /// The gust strength at time t (ramped like the mean).
+  double Gust(double t) const;
+  /// The wind at time t at distance `s` metres down the flag from the pole (its material
+  /// coordinate): Mean(t) + Gust(t) |Mean(t)| N((|Mean| t - s) / kGustLength), where N is
+  /// smooth noise in [-1, 1] per component. Frozen turbulence carried by the mean wind.
+  Vec3 At(double t, double s) const;
+
+  const WindSettings& target() const { return to_; }
+  uint64_t seed() const { return seed_; }
+
+  static constexpr double kGustLength = 1.5;  ///< m, correlation length of gusts
+
+ private:
+  double RampFraction(double t) const;
+
+  WindSettings from_;
+  WindSettings to_;
+  double ramp_start_ = 0;
+  uint64_t seed_;
+};
+
+/// Smooth 1D value noise in [-1, 1]: quintic blend between hashed values at integers.
+double ValueNoise(uint64_t seed, double u);
+
+}  // namespace flagsim::sim
