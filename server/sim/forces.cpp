@@ -1,8 +1,76 @@
 #include "forces.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace flagsim::sim {
+namespace {
+
+/// m: the shortest length divided by; 1 / kShortest^2 stays finite in float.
+constexpr float kShortest = 1e-9f;
+
+// The kernels below take every array as a __restrict parameter (GCC honours restrict on
+// parameters, not on locals), so that each loop over a grid row vectorises.
+
+/// Springs a -> a + offset for a in [begin, end):
+/// f_a = (k (|d| - L) / |d| + c (dv . d) / |d|^2) d, with d = x_b - x_a, dv = v_b - v_a.
+template <typename Real>
+void SpringKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
+                  const Real* __restrict vx, const Real* __restrict vy, const Real* __restrict vz,
+                  Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, int begin, int end,
+                  int offset, Real k, Real damping, Real rest) {
+  for (int a = begin; a < end; ++a) {
+    const int b = a + offset;
+    const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
+    const Real length_squared = dx * dx + dy * dy + dz * dz;
+    // A zero-length spring has d = 0 and so no force; the floor only keeps 1/|d| finite.
+    const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortest));
+    const Real closing = (vx[b] - vx[a]) * dx + (vy[b] - vy[a]) * dy + (vz[b] - vz[a]) * dz;
+    const Real scale = k * (length_squared * inverse - rest) * inverse + damping * closing * inverse * inverse;
+    fx[a] = scale * dx;
+    fy[a] = scale * dy;
+    fz[a] = scale * dz;
+  }
+}
+
+/// Wind on triangles (p, q, s) = (p0 + i, q0 + i, s0 + i) for i in [0, n), wind (wx, wy, wz)[i]:
+/// a third of C A n (n . w) each. With e = (q - p) x (s - p), |e| = 2A and n = e / |e|:
+/// C A n (n . w) / 3 = (C / 6) e (e . w) / |e|. Relative wind subtracts the face's mean velocity.
+template <typename Real>
+void WindKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
+                const Real* __restrict vx, const Real* __restrict vy, const Real* __restrict vz,
+                const Real* __restrict wx, const Real* __restrict wy, const Real* __restrict wz,
+                Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, int p0, int q0, int s0,
+                int n, Real share, Real relative) {
+  const Real third = Real(1) / Real(3);
+  for (int i = 0; i < n; ++i) {
+    const int p = p0 + i, q = q0 + i, s = s0 + i;
+    const Real ax = x[q] - x[p], ay = y[q] - y[p], az = z[q] - z[p];
+    const Real bx = x[s] - x[p], by = y[s] - y[p], bz = z[s] - z[p];
+    const Real ex = ay * bz - az * by, ey = az * bx - ax * bz, ez = ax * by - ay * bx;
+    const Real ux = wx[i] - relative * third * (vx[p] + vx[q] + vx[s]);
+    const Real uy = wy[i] - relative * third * (vy[p] + vy[q] + vy[s]);
+    const Real uz = wz[i] - relative * third * (vz[p] + vz[q] + vz[s]);
+    const Real norm = std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortest * kShortest));
+    const Real scale = share * (ex * ux + ey * uy + ez * uz) / norm;
+    fx[i] = scale * ex;
+    fy[i] = scale * ey;
+    fz[i] = scale * ez;
+  }
+}
+
+/// f[i] += sign * g[i] for i in [0, n).
+template <typename Real>
+void AddKernel(Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, const Real* __restrict gx,
+               const Real* __restrict gy, const Real* __restrict gz, int n, Real sign) {
+  for (int i = 0; i < n; ++i) {
+    fx[i] += sign * gx[i];
+    fy[i] += sign * gy[i];
+    fz[i] += sign * gz[i];
+  }
+}
+
+}  // namespace
 
 template <typename Real>
 void ForceEvaluator<Real>::Resize(const ClothModel<Real>& model) {
@@ -34,73 +102,39 @@ void ForceEvaluator<Real>::SampleWind(const ClothModel<Real>& model, const WindF
   }
 }
 
-// Springs whose first node is in row r: f_a = (k (|d| - L) / |d| + c (dv . d) / |d|^2) d.
+// Every spring whose first node is in row r, family by family.
 template <typename Real>
 void ForceEvaluator<Real>::SpringRow(const ClothModel<Real>& model, const ClothState<Real>& state,
                                      int r) {
-  const Real* __restrict x = state.x.data();
-  const Real* __restrict y = state.y.data();
-  const Real* __restrict z = state.z.data();
-  const Real* __restrict vx = state.vx.data();
-  const Real* __restrict vy = state.vy.data();
-  const Real* __restrict vz = state.vz.data();
   for (size_t f = 0; f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];
     if (r + family.dr >= model.rows) continue;
-    const int offset = family.dr * model.cols + family.dc;
-    const Real k = family.stiffness, damping = family.damping, rest = family.rest_length;
-    Real* __restrict fx = spring_[f].x.data();
-    Real* __restrict fy = spring_[f].y.data();
-    Real* __restrict fz = spring_[f].z.data();
-    const int begin = model.index(r, family.first_col()), end = model.index(r, family.end_col(model.cols));
-    for (int a = begin; a < end; ++a) {
-      const int b = a + offset;
-      const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
-      const Real length_squared = dx * dx + dy * dy + dz * dz;
-      const Real length = std::sqrt(length_squared);
-      const Real inverse = length > Real(0) ? Real(1) / length : Real(0);
-      const Real closing = (vx[b] - vx[a]) * dx + (vy[b] - vy[a]) * dy + (vz[b] - vz[a]) * dz;
-      const Real scale = k * (length - rest) * inverse + damping * closing * inverse * inverse;
-      fx[a] = scale * dx;
-      fy[a] = scale * dy;
-      fz[a] = scale * dz;
-    }
+    NodeForces<Real>& out = spring_[f];
+    SpringKernel(state.x.data(), state.y.data(), state.z.data(), state.vx.data(), state.vy.data(),
+                 state.vz.data(), out.x.data(), out.y.data(), out.z.data(),
+                 model.index(r, family.first_col()), model.index(r, family.end_col(model.cols)),
+                 family.dr * model.cols + family.dc, family.stiffness, family.damping,
+                 family.rest_length);
   }
 }
 
-// Wind on the two triangles of each cell in row r: a third of C A n (n . w) for each node.
-// With e = edge1 x edge2 (|e| = 2A, n = e / |e|): C A n (n . w) = (C / 2) e (e . w) / |e|.
+// The two triangles of each cell in row r: upper (r, c) (r+1, c) (r, c+1) and
+// lower (r+1, c) (r+1, c+1) (r, c+1). Along the row each corner runs over consecutive nodes.
 template <typename Real>
 void ForceEvaluator<Real>::WindRow(const ClothModel<Real>& model, const SimParams& params,
                                    const ClothState<Real>& state, int r) {
   const Real share = Real(params.wind_coefficient / 6.0);
   const Real relative = params.relative_wind ? Real(1) : Real(0);
-  const Real* x = state.x.data();
-  const Real* y = state.y.data();
-  const Real* z = state.z.data();
-  const int cols = model.cols;
-  for (int c = 0; c + 1 < cols; ++c) {
-    const int cell = r * (cols - 1) + c;
-    const int corner[4] = {model.index(r, c), model.index(r + 1, c), model.index(r, c + 1),
-                           model.index(r + 1, c + 1)};
-    // upper: corners 0 1 2; lower: corners 1 3 2.
-    const int triangles[2][3] = {{corner[0], corner[1], corner[2]}, {corner[1], corner[3], corner[2]}};
-    NodeForces<Real>* out[2] = {&upper_, &lower_};
-    for (int t = 0; t < 2; ++t) {
-      const int p = triangles[t][0], q = triangles[t][1], s = triangles[t][2];
-      const Real ax = x[q] - x[p], ay = y[q] - y[p], az = z[q] - z[p];
-      const Real bx = x[s] - x[p], by = y[s] - y[p], bz = z[s] - z[p];
-      const Real ex = ay * bz - az * by, ey = az * bx - ax * bz, ez = ax * by - ay * bx;
-      const Real third = Real(1) / Real(3);
-      const Real wx = wind_x_[c] - relative * third * (state.vx[p] + state.vx[q] + state.vx[s]);
-      const Real wy = wind_y_[c] - relative * third * (state.vy[p] + state.vy[q] + state.vy[s]);
-      const Real wz = wind_z_[c] - relative * third * (state.vz[p] + state.vz[q] + state.vz[s]);
-      const Real norm = std::sqrt(ex * ex + ey * ey + ez * ez);
-      const Real scale = norm > Real(0) ? share * (ex * wx + ey * wy + ez * wz) / norm : Real(0);
-      out[t]->x[cell] = scale * ex;
-      out[t]->y[cell] = scale * ey;
-      out[t]->z[cell] = scale * ez;
-    }
+  const int n = model.cols - 1, cell = r * n, top = model.index(r, 0), bottom = model.index(r + 1, 0);
+  const struct {
+    NodeForces<Real>* out;
+    int p, q, s;
+  } triangles[2] = {{&upper_, top, bottom, top + 1}, {&lower_, bottom, bottom + 1, top + 1}};
+  for (const auto& triangle : triangles) {
+    WindKernel(state.x.data(), state.y.data(), state.z.data(), state.vx.data(), state.vy.data(),
+               state.vz.data(), wind_x_.data(), wind_y_.data(), wind_z_.data(),
+               triangle.out->x.data() + cell, triangle.out->y.data() + cell,
+               triangle.out->z.data() + cell, triangle.p, triangle.q, triangle.s, n, share, relative);
   }
 }
 
@@ -111,9 +145,9 @@ void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimPar
                                      const ClothState<Real>& state, int r,
                                      NodeForces<Real>* forces) const {
   const int cols = model.cols, rows = model.rows, row = r * cols;
-  Real* __restrict fx = forces->x.data() + row;
-  Real* __restrict fy = forces->y.data() + row;
-  Real* __restrict fz = forces->z.data() + row;
+  Real* fx = forces->x.data() + row;
+  Real* fy = forces->y.data() + row;
+  Real* fz = forces->z.data() + row;
   const Real gravity = Real(params.gravity), friction = Real(AirFriction(params));
   for (int c = 0; c < cols; ++c) {
     const Real m = model.mass[row + c];
@@ -121,44 +155,34 @@ void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimPar
     fy[c] = -m * gravity - friction * m * state.vy[row + c];
     fz[c] = -friction * m * state.vz[row + c];
   }
+  // Adds sign * g over columns [first, end) of this row, g read at index (source + c).
+  const auto add = [&](const NodeForces<Real>& g, int source, int first, int end, Real sign) {
+    AddKernel(fx + first, fy + first, fz + first, g.x.data() + source + first,
+              g.y.data() + source + first, g.z.data() + source + first, end - first, sign);
+  };
   for (size_t f = 0; f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];
-    const NodeForces<Real>& spring = spring_[f];
     const int first = family.first_col(), end = family.end_col(cols);
-    if (r + family.dr < rows) {  // this row's nodes as first nodes
-      for (int c = first; c < end; ++c) {
-        fx[c] += spring.x[row + c];
-        fy[c] += spring.y[row + c];
-        fz[c] += spring.z[row + c];
-      }
-    }
-    if (r - family.dr >= 0) {  // as far nodes of springs starting at (r - dr, c - dc)
-      const int offset = family.dr * cols + family.dc;
-      for (int c = first + family.dc; c < end + family.dc; ++c) {
-        fx[c] -= spring.x[row + c - offset];
-        fy[c] -= spring.y[row + c - offset];
-        fz[c] -= spring.z[row + c - offset];
-      }
+    // as first nodes of springs (r, c) -> (r + dr, c + dc)
+    if (r + family.dr < rows) add(spring_[f], row, first, end, Real(1));
+    // as far nodes of springs starting at (r - dr, c - dc)
+    if (r - family.dr >= 0) {
+      add(spring_[f], row - family.dr * cols - family.dc, first + family.dc, end + family.dc, Real(-1));
     }
   }
   // Triangles touching node (r, c): upper of cells (r, c) (r-1, c) (r, c-1);
   // lower of cells (r-1, c) (r-1, c-1) (r, c-1). Cell (i, j) has index i (cols - 1) + j.
-  const int cell_cols = cols - 1;
-  auto add = [&](const NodeForces<Real>& faces, int cell_row, int first, int end, int shift) {
+  const int n = cols - 1;
+  const auto add_faces = [&](const NodeForces<Real>& faces, int cell_row, int shift) {
     if (cell_row < 0 || cell_row >= rows - 1) return;
-    const int base = cell_row * cell_cols - shift;
-    for (int c = first; c < end; ++c) {
-      fx[c] += faces.x[base + c];
-      fy[c] += faces.y[base + c];
-      fz[c] += faces.z[base + c];
-    }
+    add(faces, cell_row * n - shift, shift, n + shift, Real(1));
   };
-  add(upper_, r, 0, cols - 1, 0);
-  add(upper_, r - 1, 0, cols - 1, 0);
-  add(upper_, r, 1, cols, 1);
-  add(lower_, r - 1, 0, cols - 1, 0);
-  add(lower_, r - 1, 1, cols, 1);
-  add(lower_, r, 1, cols, 1);
+  add_faces(upper_, r, 0);
+  add_faces(upper_, r - 1, 0);
+  add_faces(upper_, r, 1);
+  add_faces(lower_, r - 1, 0);
+  add_faces(lower_, r - 1, 1);
+  add_faces(lower_, r, 1);
 }
 
 template <typename Real>

@@ -1,0 +1,82 @@
+#include "sim/cloth_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+namespace flagsim::sim {
+namespace {
+
+TEST(ClothModel, MassesAddUpToTheFlag) {
+  SimParams params;
+  params.mass = 0.4;
+  const ClothModel<double> model = BuildClothModel<double>(params);
+  EXPECT_EQ(model.num_nodes(), params.cols * params.rows);
+  const double total = std::accumulate(model.mass.begin(), model.mass.end(), 0.0);
+  EXPECT_NEAR(total, 0.4, 1e-12);
+}
+
+TEST(ClothModel, HoistEdgeIsPinnedAndNothingElse) {
+  const ClothModel<float> model = BuildClothModel<float>(SimParams{});
+  for (int r = 0; r < model.rows; ++r) {
+    for (int c = 0; c < model.cols; ++c) EXPECT_EQ(model.pinned(model.index(r, c)), c == 0);
+  }
+}
+
+TEST(ClothModel, RestGridSpansTheFlagBelowThePoleTop) {
+  SimParams params;
+  const ClothModel<double> model = BuildClothModel<double>(params);
+  const int last = model.num_nodes() - 1;
+  EXPECT_DOUBLE_EQ(model.rest_x[last] - model.rest_x[0], params.width);
+  EXPECT_NEAR(model.rest_y[0] - model.rest_y[last], params.height, 1e-12);
+  EXPECT_LT(model.rest_y[0], params.pole_height);
+}
+
+TEST(ClothModel, SpringConstantsFollowTheSheetModulus) {
+  // k = modulus dx dy / L^2: a square grid gives the structural springs exactly the modulus.
+  SimParams params;
+  params.cols = 11;
+  params.rows = 11;
+  params.width = 1.0;
+  params.height = 1.0;
+  const ClothModel<double> model = BuildClothModel<double>(params);
+  for (const SpringFamily<double>& family : model.families) {
+    const double expected = family.kind == SpringKind::kStructural ? params.stiffness
+                            : family.kind == SpringKind::kShear    ? params.shear_stiffness / 2
+                                                                   : params.bend_stiffness / 4;
+    EXPECT_NEAR(family.stiffness, expected, 1e-9 * expected);
+  }
+}
+
+TEST(ClothModel, RefiningTheGridKeepsTheSheetAsStiff) {
+  // A row of n structural springs of constant k in series stretches like one of k / n; with
+  // k proportional to 1 / L^2 times the cell area, the whole sheet's stiffness stays put.
+  SimParams coarse, fine;
+  fine.cols = 2 * coarse.cols - 1;
+  fine.rows = 2 * coarse.rows - 1;
+  const auto series = [](const SimParams& params) {
+    const ClothModel<double> model = BuildClothModel<double>(params);
+    // along one row: (cols - 1) springs in series; rows of them in parallel
+    return model.families[0].stiffness / (params.cols - 1) * (params.rows - 1);
+  };
+  EXPECT_NEAR(series(fine), series(coarse), 1e-9 * series(coarse));
+}
+
+TEST(ClothModel, FrequencyBoundHoldsForTheLowestOrderCase) {
+  // One free node on one spring (2 x 1 grid, structural only): w^2 = k / m exactly; the bound
+  // (2 sum k / m) is twice that.
+  SimParams params;
+  params.cols = 2;
+  params.rows = 2;
+  params.shear_stiffness = 0;
+  params.bend_stiffness = 0;
+  const ClothModel<double> model = BuildClothModel<double>(params);
+  const FrequencyBound bound = EstimateFrequencyBound(model, 0.0);
+  // node (0,1): one horizontal and one vertical spring, mass m/4
+  const double k_sum = model.families[0].stiffness + model.families[1].stiffness;
+  EXPECT_NEAR(bound.omega_squared, 2 * k_sum * model.inverse_mass[1], 1e-9 * bound.omega_squared);
+}
+
+}  // namespace
+}  // namespace flagsim::sim
