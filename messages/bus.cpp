@@ -9,6 +9,7 @@ namespace flagsim {
 
 struct Bus::Subscriber {
   Handler handler;
+  lcm::Subscription* subscription = nullptr;
   void OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
     handler(channel, static_cast<const uint8_t*>(buffer->data), buffer->data_size);
   }
@@ -41,11 +42,19 @@ void Bus::Publish(const std::string& channel, const uint8_t* data, size_t size) 
   bytes_published_ += size;
 }
 
-void Bus::Subscribe(const std::string& channel, Handler handler, int queue_capacity) {
-  subscribers_.push_back(std::make_unique<Subscriber>(Subscriber{std::move(handler)}));
-  lcm::Subscription* subscription =
-      lcm_->subscribe(channel, &Subscriber::OnMessage, subscribers_.back().get());
-  subscription->setQueueCapacity(queue_capacity);
+size_t Bus::Subscribe(const std::string& channel, Handler handler, int queue_capacity) {
+  auto subscriber = std::make_unique<Subscriber>();
+  subscriber->handler = std::move(handler);
+  subscriber->subscription = lcm_->subscribe(channel, &Subscriber::OnMessage, subscriber.get());
+  subscriber->subscription->setQueueCapacity(queue_capacity);
+  subscribers_.push_back(std::move(subscriber));
+  return subscribers_.size() - 1;
+}
+
+void Bus::Unsubscribe(size_t token) {
+  if (token >= subscribers_.size() || !subscribers_[token]) return;
+  lcm_->unsubscribe(subscribers_[token]->subscription);
+  subscribers_[token].reset();
 }
 
 bool Bus::Handle(int timeout_ms) { return lcm_->handleTimeout(timeout_ms) > 0; }

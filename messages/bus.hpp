@@ -45,8 +45,10 @@ class Bus {
   }
 
   /// `channel` may be a regular expression. `queue_capacity`: messages LCM holds for this
-  /// subscription between Handle() calls before it drops new ones.
-  void Subscribe(const std::string& channel, Handler handler, int queue_capacity = 30);
+  /// subscription between Handle() calls before it drops new ones. Returns a token for
+  /// Unsubscribe; handlers live until then or until the bus goes.
+  size_t Subscribe(const std::string& channel, Handler handler, int queue_capacity = 30);
+  void Unsubscribe(size_t token);
 
   /// Waits up to `timeout_ms` for one message and dispatches it. Returns true if one was handled.
   bool Handle(int timeout_ms);

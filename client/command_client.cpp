@@ -1,0 +1,34 @@
+#include "command_client.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace flagsim {
+namespace {
+
+/// "flagctl-<pid>-<8 random hex digits>": unique enough among a bus's clients.
+std::string NewClientId() {
+  std::random_device entropy;
+  char id[48];
+  std::snprintf(id, sizeof(id), "flagctl-%d-%08x", static_cast<int>(getpid()), entropy());
+  return id;
+}
+
+}  // namespace
+
+CommandClient::CommandClient(Bus& bus, const Channels& channels, double timeout_seconds)
+    : bus_(bus), timeout_(timeout_seconds), client_id_(NewClientId()) {
+  bus_.Subscribe(channels.ack, [this](const std::string&, const uint8_t* data, size_t size) { OnAck(data, size); });
+}
+
+void CommandClient::OnAck(const uint8_t* data, size_t size) {
+  std::string error;
+  const auto ack = wire::CheckedDecode<ack_t>(data, size, 64 * 1024, &error);
+  if (!ack || ack->client_id != client_id_ || ack->sequence != awaited_) return;  // not ours
+  outcome_.result = ack->accepted ? CommandOutcome::kAccepted : CommandOutcome::kRejected;
+  outcome_.reason = ack->reason;
+  outcome_.step = ack->step;
+}
+
+}  // namespace flagsim

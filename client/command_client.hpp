@@ -1,0 +1,74 @@
+// Sending one command and waiting for its ACK. The command is resent with the same sequence
+// number until an answer comes or the timeout passes (LCM over UDP can lose either way); the
+// server applies a retried command once.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <string>
+
+#include "bus.hpp"
+#include "channels.hpp"
+#include "checked_decode.hpp"
+#include "flagsim/ack_t.hpp"
+#include "utime.hpp"
+
+namespace flagsim {
+
+struct CommandOutcome {
+  enum Result { kAccepted, kRejected, kNoAnswer };
+  Result result = kNoAnswer;
+  std::string reason;  ///< the server's, when rejected
+  int64_t step = -1;   ///< when accepted: the step at whose start it took effect
+};
+
+class CommandClient {
+ public:
+  static constexpr double kRetryInterval = 0.5;  ///< s between resends
+
+  CommandClient(Bus& bus, const Channels& channels, double timeout_seconds);
+
+  /// Fills in utime, client_id and sequence, publishes on `channel`, and waits for the ACK.
+  template <class Command>
+  CommandOutcome Send(const std::string& channel, Command command) {
+    command.client_id = client_id_;
+    command.sequence = ++sequence_;
+    return SendRepeatedly(command.sequence, [&] {
+      command.utime = UnixMicros();
+      bus_.Publish(channel, command);
+    });
+  }
+
+  const std::string& client_id() const { return client_id_; }
+
+ private:
+  template <class Publish>
+  CommandOutcome SendRepeatedly(int64_t sequence, Publish publish) {
+    awaited_ = sequence;
+    outcome_ = CommandOutcome{};
+    const double start = MonotonicSeconds();
+    double next_send = start;
+    while (outcome_.result == CommandOutcome::kNoAnswer) {
+      const double now = MonotonicSeconds();
+      if (now - start >= timeout_) break;
+      if (now >= next_send) {
+        publish();
+        next_send = now + kRetryInterval;
+      }
+      bus_.Handle(static_cast<int>(1000 * std::max(0.001, std::min(next_send, start + timeout_) - now)));
+    }
+    return outcome_;
+  }
+
+  void OnAck(const uint8_t* data, size_t size);
+
+  Bus& bus_;
+  double timeout_;
+  std::string client_id_;
+  int64_t sequence_ = 0;
+  int64_t awaited_ = -1;
+  CommandOutcome outcome_;
+};
+
+}  // namespace flagsim

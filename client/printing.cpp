@@ -1,0 +1,90 @@
+#include "printing.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace flagsim {
+namespace {
+
+std::string Number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+std::string Range(const parameter_t& row) {
+  switch (row.kind) {
+    case parameter_t::BOOLEAN: return "true|false";
+    case parameter_t::CHOICE: {
+      std::string names;
+      for (const std::string& choice : row.choices) names += (names.empty() ? "" : "|") + choice;
+      return names;
+    }
+    default: return Number(row.min_value) + " .. " + Number(row.max_value);
+  }
+}
+
+std::string DefaultText(const parameter_t& row) {
+  if (row.kind == parameter_t::BOOLEAN) return row.default_value != 0 ? "true" : "false";
+  if (row.kind == parameter_t::CHOICE) {
+    const auto index = static_cast<size_t>(row.default_value);
+    return index < row.choices.size() ? row.choices[index] : Number(row.default_value);
+  }
+  return Number(row.default_value);
+}
+
+}  // namespace
+
+void PrintParams(const params_t& params, std::ostream& out) {
+  size_t name_width = 4, value_width = 5, unit_width = 4, range_width = 5;
+  for (const parameter_t& row : params.params) {
+    name_width = std::max(name_width, row.name.size());
+    value_width = std::max(value_width, row.value_text.size());
+    unit_width = std::max(unit_width, row.unit.size());
+    range_width = std::max(range_width, Range(row).size());
+  }
+  char line[1024];
+  const auto print = [&](const std::string& name, const std::string& value, const std::string& unit,
+                         const std::string& range, const std::string& fallback, const std::string& description) {
+    std::snprintf(line, sizeof(line), "%-*s  %-*s  %-*s  %-*s  %-10s  %s\n", int(name_width), name.c_str(),
+                  int(value_width), value.c_str(), int(unit_width), unit.c_str(), int(range_width), range.c_str(),
+                  fallback.c_str(), description.c_str());
+    out << line;
+  };
+  print("name", "value", "unit", "range", "default", "description");
+  for (const parameter_t& row : params.params) {
+    print(row.name, row.value_text, row.unit, Range(row), DefaultText(row), row.description);
+  }
+}
+
+void PrintStatus(const status_t& status, std::ostream& out) {
+  char text[2048];
+  std::snprintf(text, sizeof(text),
+                "uptime:            %.1f s\n"
+                "sim time:          %.3f s (step %lld)\n"
+                "real-time factor:  %.3f\n"
+                "steps per second:  %.1f (%d substeps each, %.1f us per step)\n"
+                "flag:              %d nodes, %s, %d thread(s)%s\n"
+                "state rate:        %.1f Hz (%.1f us to publish)\n"
+                "bytes per second:  %.0f\n"
+                "commands:          %lld accepted, %lld rejected, %lld undecodable dropped\n"
+                "recoveries:        %lld\n",
+                status.uptime, status.sim_time, static_cast<long long>(status.step), status.real_time_factor,
+                status.steps_per_second, status.substeps, status.step_time_us, status.num_nodes,
+                status.integrator.c_str(), status.threads, status.sleeping ? ", sleeping" : "",
+                status.state_rate_hz, status.publish_time_us, status.bytes_per_second,
+                static_cast<long long>(status.commands_accepted), static_cast<long long>(status.commands_rejected),
+                static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
+  out << text;
+}
+
+std::string TipText(const state_t& state) {
+  const size_t tip = 3 * static_cast<size_t>(std::max(state.cols - 1, 0));
+  if (tip + 2 >= state.position.size()) return "(none)";
+  char text[96];
+  std::snprintf(text, sizeof(text), "(%.3f, %.3f, %.3f)", state.position[tip], state.position[tip + 1],
+                state.position[tip + 2]);
+  return text;
+}
+
+}  // namespace flagsim

@@ -1,0 +1,109 @@
+#include "command_intake.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "checked_decode.hpp"
+#include "utime.hpp"
+
+namespace flagsim {
+namespace {
+
+/// "" if a client id can be answered to, else why not.
+std::string CheckClientId(const std::string& client_id) {
+  if (client_id.empty() || client_id.size() > CommandIntake::kMaxClientIdLength) {
+    return "client_id: " + std::to_string(client_id.size()) + " characters; allowed 1 .. " +
+           std::to_string(CommandIntake::kMaxClientIdLength);
+  }
+  for (const char c : client_id) {
+    if (c < 0x21 || c > 0x7e) return "client_id: allowed printable ASCII without spaces";
+  }
+  return "";
+}
+
+}  // namespace
+
+CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats)
+    : bus_(bus), channels_(channels), session_(session), stats_(stats) {
+  Subscribe<wind_command_t>(channels.wind, &CommandIntake::ApplyWind);
+  Subscribe<param_command_t>(channels.param, &CommandIntake::ApplyParams);
+  Subscribe<refresh_request_t>(channels.refresh, &CommandIntake::ApplyRefresh);
+}
+
+template <class Command>
+void CommandIntake::Subscribe(const std::string& channel, std::string (CommandIntake::*apply)(const Command&)) {
+  bus_.Subscribe(channel, [this, apply](const std::string& name, const uint8_t* data, size_t size) {
+    OnMessage<Command>(name, data, size, apply);
+  });
+}
+
+// bytes => decode (checked) => duplicate? => validate and apply => ACK
+template <class Command>
+void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, size_t size,
+                              std::string (CommandIntake::*apply)(const Command&)) {
+  std::string error;
+  const std::optional<Command> command = wire::CheckedDecode<Command>(data, size, kMaxCommandBytes, &error);
+  if (!command) return Drop(channel, error);
+
+  const auto previous = last_ack_.find(command->client_id);
+  if (previous != last_ack_.end() && previous->second.sequence == command->sequence) {
+    bus_.Publish(channels_.ack, previous->second);  // a retry: same answer, applied once
+    return;
+  }
+
+  ack_t ack;
+  ack.client_id = command->client_id;
+  ack.sequence = command->sequence;
+  ack.channel = channels_.Unprefixed(channel);
+  ack.step = session_.simulation().state().step;
+  ack.reason = CheckClientId(command->client_id);
+  if (ack.reason.empty()) ack.reason = (this->*apply)(*command);
+  ack.accepted = ack.reason.empty();
+  ack.utime = UnixMicros();
+  if (ack.accepted) {
+    ++stats_.commands_accepted;
+    spdlog::info("{} from {} #{}: accepted at step {}", ack.channel, ack.client_id, ack.sequence, ack.step);
+  } else {
+    ++stats_.commands_rejected;
+    spdlog::warn("{} from {} #{}: rejected: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
+  }
+  if (last_ack_.size() >= 1024) last_ack_.clear();  // bound the memory strangers can claim
+  if (!command->client_id.empty()) last_ack_[command->client_id] = ack;
+  bus_.Publish(channels_.ack, ack);
+}
+
+std::string CommandIntake::ApplyWind(const wind_command_t& command) {
+  sim::WindSettings wind;
+  wind.velocity = {command.velocity[0], command.velocity[1], command.velocity[2]};
+  wind.gust = command.gust;
+  wind.ramp_time = command.ramp_time;
+  return session_.ApplyWind(wind);
+}
+
+std::string CommandIntake::ApplyParams(const param_command_t& command) {
+  ParamChange change;
+  change.reset_to_scene = command.reset_to_scene;
+  for (size_t i = 0; i < command.names.size() && i < command.values.size(); ++i) {
+    change.assignments.emplace_back(command.names[i], command.values[i]);
+  }
+  const std::string problem = session_.ApplyParams(change);
+  params_changed_ |= problem.empty();
+  return problem;
+}
+
+std::string CommandIntake::ApplyRefresh(const refresh_request_t&) {
+  refresh_requested_ = true;  // coalesced: many requests before the next publish make one
+  return "";
+}
+
+void CommandIntake::Drop(const std::string& channel, const std::string& reason) {
+  ++stats_.messages_dropped;
+  ++drops_since_log_;
+  const double now = MonotonicSeconds();
+  if (now - last_drop_log_ >= 1.0) {
+    spdlog::warn("dropped {} undecodable message(s); latest on {}: {}", drops_since_log_, channel, reason);
+    last_drop_log_ = now;
+    drops_since_log_ = 0;
+  }
+}
+
+}  // namespace flagsim

@@ -1,0 +1,88 @@
+#include "message_builders.hpp"
+
+#include "parameter_table.hpp"
+#include "sim/integrator.hpp"
+
+namespace flagsim {
+
+state_t MakeStateMessage(const Session& session, int64_t utime) {
+  const FlagSimulation& simulation = session.simulation();
+  const auto& model = simulation.model();
+  const auto& state = simulation.state();
+  state_t message;
+  message.utime = utime;
+  message.step = state.step;
+  message.sim_time = state.time;
+  message.state_hash = static_cast<int64_t>(simulation.Hash());
+  message.cols = model.cols;
+  message.rows = model.rows;
+  message.width = static_cast<float>(session.scene().sim.width);
+  message.height = static_cast<float>(session.scene().sim.height);
+  for (int k = 0; k < 3; ++k) message.pole_top[k] = model.pole_top[k];
+  const sim::Vec3 wind = simulation.wind().Mean(state.time);
+  for (int k = 0; k < 3; ++k) message.wind[k] = wind[k];
+  const int n = state.num_nodes();
+  message.num_values = 3 * n;
+  message.position.resize(3 * n);
+  for (int i = 0; i < n; ++i) {
+    message.position[3 * i] = state.x[i];
+    message.position[3 * i + 1] = state.y[i];
+    message.position[3 * i + 2] = state.z[i];
+  }
+  return message;
+}
+
+params_t MakeParamsMessage(const Scene& scene, int64_t utime) {
+  params_t message;
+  message.utime = utime;
+  for (const Parameter& parameter : ParameterTable::Get().parameters()) {
+    parameter_t row;
+    row.name = parameter.name;
+    row.unit = parameter.unit;
+    row.kind = static_cast<int8_t>(parameter.kind);  // same order as parameter_t's constants
+    row.min_value = parameter.min_value;
+    row.max_value = parameter.max_value;
+    row.default_value = parameter.default_value();
+    row.value = parameter.get(scene);
+    row.value_text = parameter.Format(row.value);
+    row.choices = parameter.choices;
+    row.num_choices = static_cast<int32_t>(row.choices.size());
+    row.description = parameter.description;
+    message.params.push_back(std::move(row));
+  }
+  message.num_params = static_cast<int32_t>(message.params.size());
+  return message;
+}
+
+status_t MakeStatusMessage(const Session& session, const ServerStats& stats, const StatusWindow& window,
+                           int64_t utime) {
+  const FlagSimulation& simulation = session.simulation();
+  const auto per_second = [&](double count) {
+    return window.wall_seconds > 0 ? count / window.wall_seconds : 0.0;
+  };
+  const auto mean_us = [](double seconds, int64_t count) { return count > 0 ? 1e6 * seconds / count : 0.0; };
+  status_t message;
+  message.utime = utime;
+  message.uptime = window.uptime;
+  message.step = simulation.state().step;
+  message.sim_time = simulation.state().time;
+  message.real_time_factor = per_second(window.sim_seconds);
+  message.steps_per_second = per_second(double(stats.steps));
+  message.substeps = simulation.substeps();
+  message.num_nodes = simulation.model().num_nodes();
+  message.threads = simulation.params().threads;
+  message.integrator = sim::IntegratorName(simulation.params().integrator);
+  message.sleeping = false;
+  message.step_time_us = mean_us(stats.step_seconds, stats.steps);
+  message.publish_time_us = mean_us(stats.publish_seconds, stats.states_published);
+  message.state_rate_hz = per_second(double(stats.states_published));
+  message.frame_rate_hz = per_second(double(stats.frames_published));
+  message.bytes_per_second = per_second(window.bytes);
+  message.commands_accepted = stats.commands_accepted;
+  message.commands_rejected = stats.commands_rejected;
+  message.messages_dropped = stats.messages_dropped;
+  message.recoveries = simulation.recoveries();
+  return message;
+}
+
+}  // namespace flagsim

@@ -1,0 +1,33 @@
+// Outgoing messages built from the session: STATE, PARAMS, STATUS. Pure functions of what they
+// read, so tests can check them without a bus.
+#pragma once
+
+#include <cstdint>
+
+#include "flagsim/params_t.hpp"
+#include "flagsim/state_t.hpp"
+#include "flagsim/status_t.hpp"
+#include "server_stats.hpp"
+#include "session.hpp"
+
+namespace flagsim {
+
+/// The flag's nodes now: positions, grid, pole, mean wind, hash.
+state_t MakeStateMessage(const Session& session, int64_t utime);
+
+/// The parameter table with the session's current values.
+params_t MakeParamsMessage(const Scene& scene, int64_t utime);
+
+/// What passed since the last STATUS.
+struct StatusWindow {
+  double wall_seconds = 0;  ///< s of wall time
+  double sim_seconds = 0;   ///< s of simulated time
+  double bytes = 0;         ///< bytes published
+  double uptime = 0;        ///< s since the server started
+};
+
+/// Health over the window: rates, mean times, counters.
+status_t MakeStatusMessage(const Session& session, const ServerStats& stats, const StatusWindow& window,
+                           int64_t utime);
+
+}  // namespace flagsim

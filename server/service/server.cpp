@@ -1,0 +1,111 @@
+#include "server.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "message_builders.hpp"
+#include "utime.hpp"
+
+namespace flagsim {
+namespace {
+
+constexpr double kFastBatch = 0.005;  ///< s of wall time stepped back to back in --fast mode
+constexpr double kMaxWait = 0.05;     ///< s, the longest the loop sleeps on the bus
+
+}  // namespace
+
+Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const ServerOptions& options)
+    : bus_(bus),
+      channels_(channels),
+      options_(options),
+      session_(scene),
+      intake_(bus, channels, session_, stats_) {}
+
+void Server::Run(const std::atomic<bool>& stop) {
+  while (!stop.load()) {
+    const double wait = Tick(MonotonicSeconds());
+    if (options_.duration > 0 && session_.simulation().state().time >= options_.duration) break;
+    bus_.Handle(static_cast<int>(std::ceil(wait * 1000)));
+  }
+  PublishState();  // the last word: where the flag stopped
+  PublishStatus(MonotonicSeconds());
+}
+
+double Server::Tick(double now) {
+  if (start_wall_ < 0) {
+    start_wall_ = last_tick_ = next_second_ = window_wall_start_ = now;
+    window_sim_start_ = session_.simulation().state().time;
+    window_bytes_start_ = bus_.bytes_published();
+  }
+  bus_.HandleAll();
+  StepDue(now);
+  PublishDue(now);
+  if (options_.fast) return 0;
+  const double until_step = session_.scene().sim.dt - accumulator_;
+  return std::clamp(std::min(until_step, next_second_ - now), 0.0, kMaxWait);
+}
+
+// Real time: the accumulator owes the simulation the wall time since the last tick, in whole
+// steps; a loop that fell far behind drops the excess rather than spiralling.
+void Server::StepDue(double now) {
+  const double dt = session_.scene().sim.dt;
+  accumulator_ = std::min(accumulator_ + (now - last_tick_), kMaxCatchUp);
+  last_tick_ = now;
+  if (options_.fast) accumulator_ = kFastBatch;  // a batch, then the bus gets its turn
+  const double deadline = now + (options_.fast ? kFastBatch : kMaxCatchUp);
+  while (accumulator_ >= dt) {
+    if (options_.duration > 0 && session_.simulation().state().time >= options_.duration) break;
+    const double start = MonotonicSeconds();
+    session_.Step();
+    const double end = MonotonicSeconds();
+    ++stats_.steps;
+    stats_.step_seconds += end - start;
+    accumulator_ = options_.fast ? accumulator_ - (end - start) : accumulator_ - dt;
+    // STATE every 1/state_rate of simulated time: which steps are published is part of the
+    // session, not of the machine's speed.
+    const double time = session_.simulation().state().time;
+    if (time >= next_state_time_) {
+      PublishState();
+      next_state_time_ = std::max(next_state_time_ + 1.0 / session_.scene().service.state_rate, time);
+    }
+    if (end > deadline) break;
+  }
+  if (options_.fast) accumulator_ = 0;
+}
+
+void Server::PublishDue(double now) {
+  const bool refresh = intake_.TakeRefreshRequested();
+  if (refresh) PublishState();
+  if (intake_.TakeParamsChanged() || refresh) PublishParams();
+  if (now >= next_second_) {
+    PublishParams();
+    PublishStatus(now);
+    next_second_ = std::max(next_second_ + 1.0, now);
+  }
+}
+
+void Server::PublishState() {
+  const double start = MonotonicSeconds();
+  bus_.Publish(channels_.state, MakeStateMessage(session_, UnixMicros()));
+  stats_.publish_seconds += MonotonicSeconds() - start;
+  ++stats_.states_published;
+}
+
+void Server::PublishParams() { bus_.Publish(channels_.params, MakeParamsMessage(session_.scene(), UnixMicros())); }
+
+void Server::PublishStatus(double now) {
+  StatusWindow window;
+  window.wall_seconds = now - window_wall_start_;
+  window.sim_seconds = session_.simulation().state().time - window_sim_start_;
+  window.bytes = double(bus_.bytes_published() - window_bytes_start_);
+  window.uptime = now - start_wall_;
+  bus_.Publish(channels_.status, MakeStatusMessage(session_, stats_, window, UnixMicros()));
+  stats_.ResetWindow();
+  window_wall_start_ = now;
+  window_sim_start_ = session_.simulation().state().time;
+  window_bytes_start_ = bus_.bytes_published();
+}
+
+}  // namespace flagsim

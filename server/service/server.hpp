@@ -1,0 +1,68 @@
+// flagd's main loop. Single-threaded around the bus (workers only inside a step):
+//
+//   loop:  commands      bus.Handle: decode, validate, apply, ACK (between steps)
+//          step          real time: as many dt steps as wall time allows (an accumulator);
+//                        --fast: steps back to back
+//          publish       STATE every 1/state_rate of simulated time, and at once on REFRESH;
+//                        PARAMS each second and after a change; STATUS each second
+//          wait          on the bus until the next step or publication is due
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "bus.hpp"
+#include "channels.hpp"
+#include "command_intake.hpp"
+#include "scene.hpp"
+#include "server_stats.hpp"
+#include "session.hpp"
+
+namespace flagsim {
+
+struct ServerOptions {
+  bool fast = false;        ///< step as fast as possible instead of in real time
+  double duration = 0;      ///< s of simulated time to run, 0 = until stopped
+};
+
+class Server {
+ public:
+  Server(Bus& bus, const Channels& channels, const Scene& scene, const ServerOptions& options);
+
+  /// Runs until `stop` becomes true or the duration is reached.
+  void Run(const std::atomic<bool>& stop);
+
+  /// One pass of the loop at wall time `now` (s, monotonic): handle waiting commands, step what
+  /// is due, publish what is due. Returns seconds until something is due next.
+  double Tick(double now);
+
+  const Session& session() const { return session_; }
+  const ServerStats& stats() const { return stats_; }
+
+  static constexpr double kMaxCatchUp = 0.1;  ///< s of wall time a late loop may step to catch up
+
+ private:
+  void StepDue(double now);
+  void PublishDue(double now);
+  void PublishState();
+  void PublishParams();
+  void PublishStatus(double now);
+
+  Bus& bus_;
+  const Channels& channels_;
+  ServerOptions options_;
+  Session session_;
+  ServerStats stats_;
+  CommandIntake intake_;
+
+  double start_wall_ = -1;        ///< s, monotonic, first Tick
+  double accumulator_ = 0;        ///< s of wall time owed to the simulation
+  double last_tick_ = -1;
+  double next_state_time_ = 0;    ///< s of simulated time when STATE is next due
+  double next_second_ = 0;        ///< s, monotonic, when PARAMS and STATUS are next due
+  double window_sim_start_ = 0;   ///< simulated time at the last STATUS
+  double window_wall_start_ = 0;  ///< wall time at the last STATUS
+  uint64_t window_bytes_start_ = 0;
+};
+
+}  // namespace flagsim

@@ -1,0 +1,44 @@
+#include "session.hpp"
+
+#include "parameter_table.hpp"
+
+namespace flagsim {
+
+Session::Session(const Scene& scene)
+    : initial_(scene), scene_(scene), simulation_(scene.sim, scene.wind, scene.seed) {}
+
+std::string Session::ApplyWind(const sim::WindSettings& wind) {
+  const std::string problem = ParameterTable::CheckWind(wind);
+  if (!problem.empty()) return problem;
+  scene_.wind = wind;
+  simulation_.SetWind(wind);
+  return "";
+}
+
+std::string Session::ApplyParams(const ParamChange& change) {
+  if (change.assignments.size() > kMaxAssignments) {
+    return "num_assignments: " + std::to_string(change.assignments.size()) + " is out of range; allowed 0 .. " +
+           std::to_string(kMaxAssignments);
+  }
+  // Work on a copy; the session changes only if every assignment and the whole are valid.
+  Scene next = change.reset_to_scene ? initial_ : scene_;
+  std::string problems;
+  for (const auto& [name, value] : change.assignments) {
+    const std::string problem = ParameterTable::Get().Assign(name, value, &next);
+    if (!problem.empty()) problems += (problems.empty() ? "" : "; ") + problem;
+  }
+  if (problems.empty()) problems = ParameterTable::CheckConsistency(next);
+  if (!problems.empty()) return problems;
+
+  scene_ = next;
+  simulation_.SetParams(scene_.sim);
+  if (change.reset_to_scene) {
+    sim::WindSettings wind = scene_.wind;
+    wind.ramp_time = 0;  // back to the scene's wind at once
+    simulation_.SetWind(wind);
+    simulation_.RestartFlag();
+  }
+  return "";
+}
+
+}  // namespace flagsim
