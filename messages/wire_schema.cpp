@@ -1,6 +1,7 @@
 #include "wire_schema.hpp"
 
 #include <cctype>
+#include <cstring>
 #include <stdexcept>
 
 namespace flagsim::wire {
@@ -234,6 +235,11 @@ class Walker {
         return field.name + ": needs " + std::to_string(count * fixed) + " bytes, " +
                std::to_string(Left()) + " left";
       }
+      if (field.type == Primitive::kBoolean) {  // LCM writes 0 or 1; anything else is not ours
+        for (int64_t i = 0; i < count; ++i) {
+          if (data_[offset_ + i] > 1) return field.name + ": a boolean must be 0 or 1";
+        }
+      }
       offset_ += count * fixed;
       return "";
     }
@@ -252,7 +258,9 @@ class Walker {
       return field.name + ": string length " + std::to_string(length) + " with " +
              std::to_string(Left()) + " bytes left";
     }
-    if (data_[offset_ + length - 1] != 0) return field.name + ": string without its terminating NUL";
+    if (std::memchr(data_ + offset_, 0, length - 1) != nullptr || data_[offset_ + length - 1] != 0) {
+      return field.name + ": a string must end at its one NUL";
+    }
     offset_ += length;
     return "";
   }

@@ -48,7 +48,8 @@ class Schema {
   const StructLayout* Find(const std::string& type_name) const;
 
   /// Walks `size` bytes of an encoded `type_name` (starting with its 8-byte fingerprint).
-  /// Returns "" when every length fits and the bytes end exactly with the message;
+  /// Returns "" when every length fits, strings hold no NUL but their last byte, booleans are
+  /// 0 or 1, and the bytes end exactly with the message (so they re-encode to themselves);
   /// otherwise what is wrong, e.g. "names: 1000000 elements but 12 bytes left".
   std::string CheckWire(const std::string& type_name, const uint8_t* data, size_t size) const;
 

@@ -25,6 +25,7 @@ class CommandIntake {
  public:
   static constexpr size_t kMaxCommandBytes = 64 * 1024;
   static constexpr size_t kMaxClientIdLength = 64;
+  static constexpr int kQueueCapacity = 256;  ///< per channel, between two Handle() calls
 
   /// Subscribes to the command channels on `bus`; handlers run inside bus.Handle().
   CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats);

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs what flagsim needs to build, test and run, from Debian's packages (bookworm).
+# Idempotent and non-interactive: installs only what is missing.
+#   scripts/install-deps.sh          build, test and run
+#   scripts/install-deps.sh --java   also a JDK, for the lcm-spy types jar
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config   # toolchain
+  libeigen3-dev                                  # linear algebra (given)
+  liblcm-dev liblcm-bin liblcm-java              # LCM 1.3.1: library, lcm-gen/logger/logplayer, lcm.jar
+  libcli11-dev                                   # command lines of flagd and flagctl
+  libtomlplusplus-dev                            # scene files (TOML)
+  libspdlog-dev                                  # server logging
+  libgtest-dev libbenchmark-dev                  # tests and benchmarks
+  iproute2 nftables util-linux                   # private network namespaces for the udpm tests
+)
+if [[ ${1:-} == --java ]]; then packages+=(default-jdk-headless); fi
+
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=()
+if [[ $(id -u) != 0 ]]; then sudo=(sudo); fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# flagd and flagctl as real processes over udpm://, inside a private network namespace
+# (ctest runs this through scripts/netns-run). Usage: session_test.sh BUILD_DIR
+set -euo pipefail
+build=$1
+flagd=$build/server/flagd
+flagctl=$build/client/flagctl
+spray=$build/tests/lcm_spray
+export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
+prefix=ITEST_
+work=$(mktemp -d)
+server=""
+cleanup() {
+  [[ -n $server ]] && kill "$server" 2>/dev/null || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+failures=0
+passes=0
+# expect CODE DESCRIPTION COMMAND...: runs COMMAND, checks its exit code, keeps its output.
+expect() {
+  local code=$1 what=$2
+  shift 2
+  local got=0
+  "$@" >"$work/out" 2>&1 || got=$?
+  if [[ $got == "$code" ]]; then
+    passes=$((passes + 1))
+    echo "ok    $what (exit $got)"
+  else
+    failures=$((failures + 1))
+    echo "FAIL  $what: exit $got, expected $code"
+    sed 's/^/      /' "$work/out"
+  fi
+}
+# contains TEXT DESCRIPTION: the last command's output contains TEXT.
+contains() {
+  if grep -qF -- "$1" "$work/out"; then
+    passes=$((passes + 1))
+    echo "ok    $2"
+  else
+    failures=$((failures + 1))
+    echo "FAIL  $2: no '$1' in:"
+    sed 's/^/      /' "$work/out"
+  fi
+}
+
+echo "-- startup errors"
+expect 2 "flagd rejects an unknown scene" "$flagd" --scene no-such-scene
+contains "presets: breeze, calm, gale, hanging" "  and lists the presets"
+expect 2 "flagd rejects --set stiffness=nan" "$flagd" --set stiffness=nan
+contains "stiffness: 'nan' is not a finite number" "  and names the parameter"
+expect 0 "flagd --help" "$flagd" --help
+expect 0 "flagctl --help" "$flagctl" --help
+expect 2 "flagctl without a subcommand" "$flagctl"
+expect 2 "flagctl wind with two numbers" "$flagctl" wind 1 2
+
+echo "-- a live server"
+"$flagd" --prefix $prefix --log-level warn >"$work/flagd.log" 2>&1 &
+server=$!
+for _ in $(seq 50); do
+  "$flagctl" --prefix $prefix --timeout 0.5 status >/dev/null 2>&1 && break
+  sleep 0.2
+done
+expect 0 "status answers" "$flagctl" --prefix $prefix status
+contains "symplectic_euler" "  and names the integrator"
+expect 0 "wind accepted" "$flagctl" --prefix $prefix wind 8 -0.5 2 --gust 0.3 --ramp 1
+contains "accepted at step" "  and says when it took effect"
+expect 3 "wind with NaN rejected" "$flagctl" --prefix $prefix wind 8 nan 0
+contains "velocity.y" "  with the field named"
+expect 3 "wind over the speed limit rejected" "$flagctl" --prefix $prefix wind 100 0 0
+expect 0 "set accepted" "$flagctl" --prefix $prefix set stiffness=1500 damping=0.08
+expect 3 "set out of range rejected" "$flagctl" --prefix $prefix set stiffness=-3
+contains "allowed 1 .. 1e+05 N/m" "  with the allowed range"
+expect 3 "set of an unknown name rejected" "$flagctl" --prefix $prefix set colour=red
+contains "unknown parameter 'colour'" "  with the name"
+expect 2 "set without NAME=VALUE is a usage error" "$flagctl" --prefix $prefix set stiffness
+expect 0 "params lists the table" "$flagctl" --prefix $prefix params
+contains "stiffness         1500" "  with the new value"
+expect 0 "refresh gets a full state" "$flagctl" --prefix $prefix refresh
+contains "32 x 24 nodes" "  of the whole flag"
+expect 4 "no answer on another prefix" "$flagctl" --prefix NOBODY_ --timeout 1 status
+
+echo "-- hostile bytes"
+expect 0 "spray garbage on every command channel" "$spray" "$LCM_DEFAULT_URL" 40 \
+  ${prefix}WIND ${prefix}PARAM ${prefix}REFRESH ${prefix}CAMERA ${prefix}KEYFRAME
+sleep 1.5  # a STATUS goes out each second
+expect 0 "the server still answers" "$flagctl" --prefix $prefix status
+contains "120 undecodable dropped" "  and counted what it dropped"
+expect 0 "and still takes commands" "$flagctl" --prefix $prefix wind 5 0 1
+
+echo "-- recording"
+expect 0 "record two seconds" "$flagctl" --prefix $prefix record -o "$work/session.lcmlog" --duration 2
+contains "events" "  and report them"
+expect 0 "watch the live stream" "$flagctl" --prefix $prefix watch --duration 2.5
+contains "states received" "  and see states"
+
+echo "-- stopping"
+kill -TERM "$server"
+code=0
+wait "$server" || code=$?
+server=""
+if [[ $code == 0 ]]; then passes=$((passes + 1)); echo "ok    flagd stops cleanly on SIGTERM"
+else failures=$((failures + 1)); echo "FAIL  flagd exit $code on SIGTERM"; cat "$work/flagd.log"; fi
+
+echo "-- playback"
+"$flagctl" --prefix $prefix watch --duration 4 >"$work/watch.out" 2>&1 &
+watcher=$!
+sleep 0.5
+expect 0 "lcm-logplayer plays the log" lcm-logplayer "$work/session.lcmlog"
+code=0
+wait $watcher || code=$?
+cp "$work/watch.out" "$work/out"
+if [[ $code == 0 ]]; then passes=$((passes + 1)); echo "ok    flagctl watch reads the played-back log"
+else failures=$((failures + 1)); echo "FAIL  flagctl watch on playback: exit $code"; fi
+contains "states received" "  and sees its states"
+
+echo "$passes passed, $failures failed"
+((failures == 0))

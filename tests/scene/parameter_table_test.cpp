@@ -1,0 +1,112 @@
+#include "parameter_table.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace flagsim {
+namespace {
+
+const ParameterTable& Table() { return ParameterTable::Get(); }
+
+/// Every parameter's value in `scene`, to check that a rejection changed nothing.
+std::vector<double> Values(const Scene& scene) {
+  std::vector<double> values;
+  for (const Parameter& parameter : Table().parameters()) values.push_back(parameter.get(scene));
+  return values;
+}
+
+std::vector<std::string> BadTexts(const Parameter& parameter) {
+  switch (parameter.kind) {
+    case ParameterKind::kBoolean: return {"maybe", "", "2", "nan"};
+    case ParameterKind::kChoice: return {"nope", "", "0", "nan", parameter.choices[0] + " "};
+    case ParameterKind::kInteger:
+    case ParameterKind::kReal: break;
+  }
+  const double span = parameter.max_value - parameter.min_value;
+  std::vector<std::string> texts = {"nan", "NaN", "inf", "-inf", "infinity", "", "1x", "abc",
+                                    parameter.Format(parameter.min_value - std::max(1.0, span)),
+                                    parameter.Format(parameter.max_value + std::max(1.0, span))};
+  if (parameter.kind == ParameterKind::kInteger) texts.push_back(parameter.Format(parameter.min_value) + ".5");
+  return texts;
+}
+
+TEST(ParameterTable, HasTheParametersTheDesignPromises) {
+  for (const char* name : {"mass", "stiffness", "shear_stiffness", "bend_stiffness", "damping", "friction",
+                           "wind_coefficient", "gravity", "dt", "integrator", "cols", "rows", "threads"}) {
+    EXPECT_NE(Table().Find(name), nullptr) << name;
+  }
+}
+
+TEST(ParameterTable, EveryBadValueIsRejectedWithItsNameAndRangeAndChangesNothing) {
+  for (const Parameter& parameter : Table().parameters()) {
+    for (const std::string& text : BadTexts(parameter)) {
+      Scene scene;
+      const std::vector<double> before = Values(scene);
+      const std::string reason = Table().Assign(parameter.name, text, &scene);
+      EXPECT_FALSE(reason.empty()) << parameter.name << "=" << text << " was accepted";
+      EXPECT_EQ(reason.rfind(parameter.name + ":", 0), 0u) << reason;
+      EXPECT_NE(reason.find(parameter.AllowedText()), std::string::npos) << reason;
+      EXPECT_EQ(Values(scene), before) << parameter.name << "=" << text;
+    }
+  }
+}
+
+TEST(ParameterTable, UnknownNamesAreRejectedWithTheKnownOnes) {
+  Scene scene;
+  const std::string reason = Table().Assign("stifness", "100", &scene);
+  EXPECT_NE(reason.find("unknown parameter 'stifness'"), std::string::npos);
+  EXPECT_NE(reason.find("stiffness"), std::string::npos);
+}
+
+TEST(ParameterTable, DefaultsAndLimitsAreAccepted) {
+  for (const Parameter& parameter : Table().parameters()) {
+    for (const double value : {parameter.default_value(), parameter.min_value, parameter.max_value}) {
+      Scene scene;
+      EXPECT_EQ(Table().Assign(parameter.name, parameter.Format(value), &scene), "") << parameter.name;
+      EXPECT_EQ(parameter.get(scene), value) << parameter.name;
+    }
+    EXPECT_GE(parameter.default_value(), parameter.min_value) << parameter.name;
+    EXPECT_LE(parameter.default_value(), parameter.max_value) << parameter.name;
+  }
+}
+
+TEST(ParameterTable, AssignmentsReachTheScene) {
+  Scene scene;
+  EXPECT_EQ(Table().Assign("stiffness", "1234.5", &scene), "");
+  EXPECT_EQ(Table().Assign("cols", "40", &scene), "");
+  EXPECT_EQ(Table().Assign("relative_wind", "on", &scene), "");
+  EXPECT_EQ(Table().Assign("integrator", "seed", &scene), "");
+  EXPECT_EQ(Table().Assign("state_rate", "30", &scene), "");
+  EXPECT_EQ(scene.sim.stiffness, 1234.5);
+  EXPECT_EQ(scene.sim.cols, 40);
+  EXPECT_TRUE(scene.sim.relative_wind);
+  EXPECT_EQ(scene.sim.integrator, sim::IntegratorKind::kSeed);
+  EXPECT_EQ(scene.service.state_rate, 30);
+}
+
+TEST(ParameterTable, SeedFrictionMustBeAFraction) {
+  Scene scene;
+  scene.sim.integrator = sim::IntegratorKind::kSeed;
+  scene.sim.friction = 1.5;
+  EXPECT_NE(ParameterTable::CheckConsistency(scene).find("friction"), std::string::npos);
+  scene.sim.friction = 0.5;
+  EXPECT_EQ(ParameterTable::CheckConsistency(scene), "");
+}
+
+TEST(ParameterTable, WindChecksNameTheField) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{5, 0, 1}, 0.2, 3}), "");
+  EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{nan, 0, 0}, 0, 0}).rfind("velocity.x:", 0), 0u);
+  EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{0, 0, -inf}, 0, 0}).rfind("velocity.z:", 0), 0u);
+  EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{50, 50, 0}, 0, 0}).rfind("velocity:", 0), 0u);
+  EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{1, 0, 0}, nan, 0}).rfind("gust:", 0), 0u);
+  EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{1, 0, 0}, 1.5, 0}).rfind("gust:", 0), 0u);
+  EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{1, 0, 0}, 0, -1}).rfind("ramp_time:", 0), 0u);
+  EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{1, 0, 0}, 0, inf}).rfind("ramp_time:", 0), 0u);
+}
+
+}  // namespace
+}  // namespace flagsim

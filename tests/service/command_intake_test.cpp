@@ -1,0 +1,172 @@
+// The server's command side on an in-process bus (memq://): answers, validation, retries, and
+// hostile bytes on every command channel.
+#include "command_intake.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "command_client.hpp"
+#include "messages/message_fixtures.hpp"
+#include "parameter_table.hpp"
+#include "server.hpp"
+
+namespace flagsim {
+namespace {
+
+class CommandIntakeTest : public ::testing::Test {
+ protected:
+  CommandIntakeTest() : bus_("memq://"), server_(bus_, channels_, Scene{}, ServerOptions{}), client_(bus_, channels_, 1.0) {}
+
+  const Scene& scene() const { return server_.session().scene(); }
+  const ServerStats& stats() const { return server_.stats(); }
+
+  CommandOutcome SetParams(std::vector<std::string> names, std::vector<std::string> values) {
+    param_command_t command{};
+    command.names = std::move(names);
+    command.values = std::move(values);
+    command.num_assignments = static_cast<int32_t>(command.names.size());
+    return client_.Send(channels_.param, command);
+  }
+
+  /// Every parameter's current value, to check that a rejection changed nothing.
+  std::vector<double> Values() const {
+    std::vector<double> values;
+    for (const Parameter& parameter : ParameterTable::Get().parameters()) values.push_back(parameter.get(scene()));
+    return values;
+  }
+
+  Bus bus_;
+  Channels channels_;
+  Server server_;
+  CommandClient client_;
+};
+
+TEST_F(CommandIntakeTest, AcceptedWindIsAppliedAndAcknowledged) {
+  wind_command_t command = testing::SomeWindCommand();
+  const CommandOutcome outcome = client_.Send(channels_.wind, command);
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
+  EXPECT_EQ(outcome.step, 0);
+  EXPECT_EQ(scene().wind.velocity, (sim::Vec3{4, 0, 1}));
+  EXPECT_EQ(scene().wind.gust, 0.25);
+  EXPECT_EQ(server_.session().simulation().wind().target().ramp_time, 1.5);
+  EXPECT_EQ(stats().commands_accepted, 1);
+}
+
+TEST_F(CommandIntakeTest, RejectedWindNamesTheFieldAndChangesNothing) {
+  wind_command_t command{};
+  command.velocity[1] = std::numeric_limits<double>::infinity();
+  const CommandOutcome outcome = client_.Send(channels_.wind, command);
+  EXPECT_EQ(outcome.result, CommandOutcome::kRejected);
+  EXPECT_EQ(outcome.reason.rfind("velocity.y:", 0), 0u) << outcome.reason;
+  EXPECT_EQ(scene().wind.velocity, Scene{}.wind.velocity);
+  EXPECT_EQ(stats().commands_rejected, 1);
+}
+
+TEST_F(CommandIntakeTest, ParamsApplyTogetherOrNotAtAll) {
+  const auto before = Values();
+  CommandOutcome outcome = SetParams({"stiffness", "damping"}, {"1500", "nan"});
+  EXPECT_EQ(outcome.result, CommandOutcome::kRejected);
+  EXPECT_NE(outcome.reason.find("damping: 'nan' is not a finite number"), std::string::npos) << outcome.reason;
+  EXPECT_EQ(Values(), before);  // stiffness was valid, but the command failed as a whole
+
+  outcome = SetParams({"stiffness", "damping"}, {"1500", "0.2"});
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
+  EXPECT_EQ(scene().sim.stiffness, 1500);
+  EXPECT_EQ(server_.session().simulation().params().damping, 0.2);
+}
+
+TEST_F(CommandIntakeTest, EveryParameterRejectsNanInfinityAndOutOfRange) {
+  for (const Parameter& parameter : ParameterTable::Get().parameters()) {
+    std::vector<std::string> texts = {"nan", "inf", "-inf"};
+    if (parameter.kind == ParameterKind::kReal || parameter.kind == ParameterKind::kInteger) {
+      texts.push_back(parameter.Format(parameter.min_value - 1e6));
+      texts.push_back(parameter.Format(parameter.max_value + 1e6));
+    }
+    for (const std::string& text : texts) {
+      const auto before = Values();
+      const CommandOutcome outcome = SetParams({parameter.name}, {text});
+      EXPECT_EQ(outcome.result, CommandOutcome::kRejected) << parameter.name << "=" << text;
+      EXPECT_EQ(outcome.reason.rfind(parameter.name + ":", 0), 0u) << outcome.reason;
+      EXPECT_EQ(Values(), before);
+    }
+  }
+}
+
+TEST_F(CommandIntakeTest, ResetRestoresTheScene) {
+  ASSERT_EQ(SetParams({"stiffness", "cols"}, {"900", "20"}).result, CommandOutcome::kAccepted);
+  ASSERT_EQ(client_.Send(channels_.wind, testing::SomeWindCommand()).result, CommandOutcome::kAccepted);
+  param_command_t reset{};
+  reset.reset_to_scene = true;
+  EXPECT_EQ(client_.Send(channels_.param, reset).result, CommandOutcome::kAccepted);
+  EXPECT_EQ(scene().sim.stiffness, Scene{}.sim.stiffness);
+  EXPECT_EQ(server_.session().simulation().model().cols, Scene{}.sim.cols);
+  EXPECT_EQ(scene().wind.velocity, Scene{}.wind.velocity);
+}
+
+TEST_F(CommandIntakeTest, ARetryIsAnsweredAgainButAppliedOnce) {
+  wind_command_t command = testing::SomeWindCommand();
+  command.client_id = "retrying-client";
+  command.sequence = 5;
+  int acks = 0;
+  bus_.Subscribe(channels_.ack, [&acks](const std::string&, const uint8_t*, size_t) { ++acks; });
+  for (int i = 0; i < 3; ++i) bus_.Publish(channels_.wind, command);
+  bus_.HandleAll();
+  EXPECT_EQ(acks, 3);
+  EXPECT_EQ(stats().commands_accepted, 1);
+}
+
+TEST_F(CommandIntakeTest, CommandsWithoutAClientIdAreRejected) {
+  wind_command_t command = testing::SomeWindCommand();
+  command.client_id = "";
+  std::optional<ack_t> answer;
+  bus_.Subscribe(channels_.ack, [&answer](const std::string&, const uint8_t* data, size_t size) {
+    std::string error;
+    answer = wire::CheckedDecode<ack_t>(data, size, 1 << 16, &error);
+  });
+  bus_.Publish(channels_.wind, command);
+  bus_.HandleAll();
+  ASSERT_TRUE(answer);
+  EXPECT_FALSE(answer->accepted);
+  EXPECT_EQ(answer->reason.rfind("client_id:", 0), 0u);
+}
+
+TEST_F(CommandIntakeTest, HostileBytesOnEveryCommandChannelAreCountedAndDropped) {
+  std::mt19937 random(3);
+  const std::vector<uint8_t> valid = testing::Encode(testing::SomeParamCommand());
+  std::vector<std::vector<uint8_t>> hostile = {
+      {},                                                // empty
+      {1, 2, 3},                                         // shorter than a fingerprint
+      std::vector<uint8_t>(valid.begin(), valid.end() - 3),  // truncated
+      std::vector<uint8_t>(70 * 1024, 0xab),             // oversized
+      testing::Encode(testing::SomeState()),             // another type's fingerprint
+  };
+  std::vector<uint8_t> huge_count = valid;  // num_assignments = 2^31 - 1
+  const size_t at = 8 + 8 + 4 + 12 + 8 + 1;
+  huge_count[at] = 0x7f;
+  huge_count[at + 1] = huge_count[at + 2] = huge_count[at + 3] = 0xff;
+  hostile.push_back(huge_count);
+  for (int i = 0; i < 50; ++i) {  // random bytes, some behind a real fingerprint
+    std::vector<uint8_t> bytes(1 + random() % 200);
+    for (uint8_t& b : bytes) b = static_cast<uint8_t>(random());
+    if (i % 2 == 0 && bytes.size() >= 8) std::copy(valid.begin(), valid.begin() + 8, bytes.begin());
+    hostile.push_back(bytes);
+  }
+  const auto before = Values();
+  int64_t sent = 0;
+  for (const std::string& channel : {channels_.wind, channels_.param, channels_.refresh}) {
+    for (const auto& bytes : hostile) {
+      bus_.Publish(channel, bytes.data(), bytes.size());
+      bus_.HandleAll();
+      ++sent;
+    }
+  }
+  EXPECT_EQ(stats().messages_dropped, sent);
+  EXPECT_EQ(stats().commands_accepted, 0);
+  EXPECT_EQ(Values(), before);
+  // And the server still answers.
+  EXPECT_EQ(client_.Send(channels_.wind, testing::SomeWindCommand()).result, CommandOutcome::kAccepted);
+}
+
+}  // namespace
+}  // namespace flagsim
