@@ -58,7 +58,7 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# ---- choosing the engine ---------------------------------------------------------------------------
+# ---- choosing the engine -------------------------------------------------------------------------
 pick_engine() {
   case ${FLAGSIM_ENGINE:-} in
     docker | buildah) echo "$FLAGSIM_ENGINE"; return ;;
@@ -74,21 +74,22 @@ pick_engine() {
   fi
 }
 
-# ---- Docker ------------------------------------------------------------------------------------------
+# ---- Docker --------------------------------------------------------------------------------------
 docker_build() {
   docker build -t "$image" -f "$repo_root/docker/Dockerfile" "$repo_root"
 }
 
 docker_run() {
   docker image inspect "$image" >/dev/null 2>&1 || docker_build
-  # --init: a PID 1 that forwards signals and reaps children, so Ctrl-C and `docker stop` work.
+  # --init: a small PID 1 that forwards signals and reaps children, so that any command, not
+  # only one that handles SIGTERM itself, stops on Ctrl-C and `docker stop`.
   local options=(--rm --init --interactive --network host)
   [[ -t 0 && -t 1 ]] && options+=(--tty)
   [[ -n ${LCM_DEFAULT_URL:-} ]] && options+=(--env "LCM_DEFAULT_URL=$LCM_DEFAULT_URL")
   docker run "${options[@]}" "$image" "$@"
 }
 
-# ---- buildah ---------------------------------------------------------------------------------------------
+# ---- buildah -------------------------------------------------------------------------------------
 # vfs works everywhere, also where overlay mounts cannot nest (inside another container); it costs
 # disk space (each layer is a full copy), not correctness.
 buildah_cmd() { buildah --storage-driver "${FLAGSIM_STORAGE_DRIVER:-vfs}" "$@"; }
@@ -101,13 +102,14 @@ need_root() {
   ((EUID == 0)) && return
   command -v sudo >/dev/null || die "the buildah path needs root; run this script as root"
   say "the buildah path needs root: re-running with sudo"
-  exec sudo --preserve-env=FLAGSIM_IMAGE,FLAGSIM_ENGINE,FLAGSIM_PULL_BASE,FLAGSIM_STORAGE_DRIVER,DEBIAN_MIRROR,LCM_DEFAULT_URL \
-    -- "${BASH_SOURCE[0]}" "${script_args[@]}"
+  local keep=FLAGSIM_IMAGE,FLAGSIM_ENGINE,FLAGSIM_PULL_BASE,FLAGSIM_STORAGE_DRIVER
+  keep+=,DEBIAN_MIRROR,LCM_DEFAULT_URL
+  exec sudo --preserve-env="$keep" -- "${BASH_SOURCE[0]}" "${script_args[@]}"
 }
 
 # install_packages PACKAGE... : from Debian's packages, quietly.
 install_packages() {
-  command -v apt-get >/dev/null || die "missing $*, and no apt-get to install it: install $* and retry"
+  command -v apt-get >/dev/null || die "$* missing, and no apt-get here: install $* and retry"
   say "installing $* from Debian's packages"
   apt-get update -qq
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "$@" >/dev/null
@@ -122,7 +124,9 @@ debian_mirror() {
     mirror=$(awk '$1 == "URIs:" { print $2; exit }' /etc/apt/sources.list.d/debian.sources)
   fi
   if [[ -z $mirror && -r /etc/apt/sources.list ]]; then
-    mirror=$(sed -E 's/\[[^]]*\]//' /etc/apt/sources.list | awk -v s="$suite" '$1 == "deb" && $3 == s { print $2; exit }')
+    # One-line entries may carry [options] before the URI: drop them first.
+    mirror=$(sed -E 's/\[[^]]*\]//' /etc/apt/sources.list \
+      | awk -v s="$suite" '$1 == "deb" && $3 == s { print $2; exit }')
   fi
   echo "${mirror:-http://deb.debian.org/debian}"
 }
@@ -130,7 +134,7 @@ debian_mirror() {
 # Gives the bootstrapped system the same apt sources as the official image (the release,
 # its updates and security), so `apt-get install` in the Dockerfile sees current packages.
 write_apt_sources() {
-  local rootfs=$1 mirror=$2 security=http://deb.debian.org/debian-security
+  local rootfs=$1 mirror=${2%/} security=http://deb.debian.org/debian-security
   [[ $mirror == */debian ]] && security=$mirror-security
   rm -f "$rootfs/etc/apt/sources.list"
   cat >"$rootfs/etc/apt/sources.list.d/debian.sources" <<EOF
@@ -148,15 +152,39 @@ Signed-By: $keyring
 EOF
 }
 
+# Settings every container image wants, as the official one has them: apt keeps no package
+# caches or translations (they would only bloat each layer that installs something), and package
+# scripts start no services (an image build has no init to run them).
+write_container_config() {
+  local rootfs=$1
+  cat >"$rootfs/etc/apt/apt.conf.d/90container" <<'EOF'
+Dir::Cache::pkgcache "";
+Dir::Cache::srcpkgcache "";
+Acquire::Languages "none";
+DPkg::Post-Invoke { "rm -f /var/cache/apt/archives/*.deb || true"; };
+EOF
+  printf '#!/bin/sh\nexit 101\n' >"$rootfs/usr/sbin/policy-rc.d"
+  chmod 755 "$rootfs/usr/sbin/policy-rc.d"
+}
+
 # Drops what debootstrap leaves behind that no image should carry: package lists and caches.
 trim_rootfs() {
   local rootfs=$1
-  rm -rf "$rootfs"/var/lib/apt/lists/* "$rootfs"/var/cache/apt/*.bin "$rootfs"/var/cache/apt/archives/*.deb
+  rm -rf "$rootfs"/var/lib/apt/lists/* "$rootfs"/var/cache/apt/*.bin
+  rm -f "$rootfs"/var/cache/apt/archives/*.deb
   rm -f "$rootfs"/var/log/bootstrap.log
 }
 
-# import_rootfs DIR : commits DIR as $base_image in buildah's local storage.
-import_rootfs() {
+# debootstrap installs the release as it was; this adds what -updates and -security have fixed
+# since, as a freshly published official image would have it.
+upgrade_container() {
+  buildah_cmd run --isolation chroot --env DEBIAN_FRONTEND=noninteractive "$1" -- sh -c \
+    'apt-get update -qq && apt-get upgrade -y -qq >/dev/null && rm -rf /var/lib/apt/lists/*'
+}
+
+# commit_rootfs DIR : stores DIR, brought up to date, as localhost/$base_image in buildah's local
+# storage. The localhost/ name says it was made here; FROM debian:bookworm finds it all the same.
+commit_rootfs() {
   local rootfs=$1 ctr mount_point
   ctr=$(buildah_cmd from scratch)
   buildah_containers+=("$ctr")
@@ -166,7 +194,8 @@ import_rootfs() {
   # The same defaults as the official image: a shell to start with.
   buildah_cmd config --cmd bash \
     --env PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin "$ctr"
-  buildah_cmd commit --quiet "$ctr" "$base_image" >/dev/null
+  upgrade_container "$ctr"
+  buildah_cmd commit --quiet "$ctr" "localhost/$base_image" >/dev/null
 }
 
 # Makes $base_image from Debian's package mirror: the only source some machines can reach.
@@ -185,9 +214,10 @@ bootstrap_base() {
     || die "debootstrap failed; its log is $log"
   rm -f "$log"
   write_apt_sources "$rootfs" "$mirror"
+  write_container_config "$rootfs"
   trim_rootfs "$rootfs"
-  import_rootfs "$rootfs"
-  say "made $base_image in buildah's local storage"
+  commit_rootfs "$rootfs"
+  say "made localhost/$base_image in buildah's local storage"
 }
 
 # The base image must be local: the build itself never pulls (--pull=never).
@@ -211,7 +241,8 @@ buildah_build() {
 # The image's CMD, one word a line, for running it when no command was given
 # (buildah run, unlike docker run, needs one).
 buildah_image_cmd() {
-  buildah_cmd inspect --type image --format '{{range .OCIv1.Config.Cmd}}{{println .}}{{end}}' "$image"
+  local template='{{range .OCIv1.Config.Cmd}}{{println .}}{{end}}'
+  buildah_cmd inspect --type image --format "$template" "$image"
 }
 
 buildah_run() {
@@ -228,7 +259,7 @@ buildah_run() {
   buildah_cmd run "${options[@]}" "$ctr" -- "${command[@]}"
 }
 
-# ---- command line ------------------------------------------------------------------------------------------
+# ---- command line --------------------------------------------------------------------------------
 main() {
   (($#)) || usage
   local action=$1
