@@ -1,0 +1,38 @@
+// The camera: a perspective view of the world, moved with the seed's affine transforms.
+//
+//   clip = Projection() * View() * world,   View() = LookAt(eye, target, up) * scene
+//
+// `scene` accumulates the seed's moves of the world in front of the camera (rotations about
+// the target, scaling about a point); translation and orbit move the camera itself. Lighting is
+// computed in world space, so lights stay with the flag when the scene is turned.
+#pragma once
+
+#include <Eigen/Geometry>
+
+namespace flagsim::render {
+
+struct Camera {
+  Eigen::Vector3d eye{2.6, 1.9, 4.4};     ///< m, world frame
+  Eigen::Vector3d target{0.8, 2.2, 0.0};  ///< m, the point looked at
+  Eigen::Vector3d up{0, 1, 0};            ///< world up
+  double fov_y = 0.70;                    ///< rad, vertical field of view (about 40 degrees)
+  double near_plane = 0.05;               ///< m
+  double far_plane = 100.0;               ///< m
+  int width = 1280;                       ///< px
+  int height = 720;                       ///< px
+  Eigen::Affine3d scene = Eigen::Affine3d::Identity();  ///< the seed's transforms of the world
+
+  Eigen::Matrix4d View() const;        ///< world -> camera (camera looks down -z)
+  Eigen::Matrix4d Projection() const;  ///< camera -> clip, OpenGL convention (z in [-w, w])
+  /// The eye in world coordinates (undoing `scene`), for lighting.
+  Eigen::Vector3d EyeInWorld() const { return scene.inverse() * eye; }
+
+  // The moves CAMERA commands make.
+  void RotateScene(const Eigen::Vector3d& axis, double angle);  ///< about the target
+  void ScaleScene(double factor, const Eigen::Vector3d& centre);
+  void Translate(const Eigen::Vector3d& offset);  ///< eye and target together
+  void Orbit(double azimuth, double elevation);   ///< eye around the target, rad
+  void LookAt(const Eigen::Vector3d& point) { target = point; }
+};
+
+}  // namespace flagsim::render

@@ -1,0 +1,34 @@
+// The flag's pattern: a small RGB8 texture made from a design, sampled at the nearest texel.
+// (u, v) in [0, 1]^2: u runs along the flag from the hoist, v down from the top edge.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace flagsim::render {
+
+struct Texture {
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgb;  ///< row-major, top row (v = 0) first
+
+  /// The texel under (u, v), clamped to the edges.
+  const uint8_t* Sample(float u, float v) const {
+    int x = static_cast<int>(u * width), y = static_cast<int>(v * height);
+    x = x < 0 ? 0 : x >= width ? width - 1 : x;
+    y = y < 0 ? 0 : y >= height ? height - 1 : y;
+    return &rgb[(size_t(y) * width + x) * 3];
+  }
+};
+
+enum class FlagDesign {
+  kNordicCross,  ///< an off-centre cross on a plain field
+  kTricolour,    ///< three vertical bands
+  kChecker,      ///< 8 x 8 squares: shows the mesh's parametrisation
+};
+
+/// The design drawn into a width x height texture.
+Texture MakePattern(FlagDesign design, int width, int height);
+
+}  // namespace flagsim::render

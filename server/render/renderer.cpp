@@ -1,0 +1,240 @@
+#include "renderer.hpp"
+
+#include <algorithm>
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace flagsim::render {
+namespace {
+
+// ClipVertex channel layout. Gouraud: front D rgb, S rgb | back D rgb, S rgb | u, v.
+// Flat and Phong: position xyz, normal xyz | the same again | u, v.
+constexpr int kFrontBlock = 0, kBackBlock = 6, kUv = 12;
+constexpr int kChunk = 256;  ///< triangles per primitive-stage work item
+
+void PutShade(const Shade& shade, float* channels) {
+  for (int k = 0; k < 3; ++k) {
+    channels[k] = shade.diffuse[k];
+    channels[3 + k] = shade.specular[k];
+  }
+}
+
+ScreenVertex Project(const ClipVertex& v, bool back, int width, int height) {
+  ScreenVertex s;
+  s.inverse_w = 1.0f / v.clip.w();
+  s.x = (v.clip.x() * s.inverse_w + 1.0f) * 0.5f * width;
+  s.y = (1.0f - v.clip.y() * s.inverse_w) * 0.5f * height;
+  s.z = (v.clip.z() * s.inverse_w + 1.0f) * 0.5f;
+  const int block = back ? kBackBlock : kFrontBlock;
+  std::copy(v.channels + block, v.channels + block + 6, s.channels);
+  s.channels[6] = v.channels[kUv];
+  s.channels[7] = v.channels[kUv + 1];
+  return s;
+}
+
+/// Flat shading: one lighting value per face, from its normal at its centroid.
+void ShadeFace(const RenderScene& scene, const Mesh& mesh, const Eigen::Vector3f& eye, ClipVertex v[3]) {
+  const Eigen::Vector3f p[3] = {Eigen::Vector3f(v[0].channels), Eigen::Vector3f(v[1].channels),
+                                Eigen::Vector3f(v[2].channels)};
+  const Eigen::Vector3f centre = (p[0] + p[1] + p[2]) / 3;
+  const Eigen::Vector3f normal = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
+  const Shade front = ShadePoint(scene.materials[mesh.front_material], scene.lighting, centre, normal, eye);
+  Shade back;
+  if (mesh.back_material >= 0) back = ShadePoint(scene.materials[mesh.back_material], scene.lighting, centre, -normal, eye);
+  for (int i = 0; i < 3; ++i) {
+    PutShade(front, v[i].channels + kFrontBlock);
+    PutShade(back, v[i].channels + kBackBlock);
+  }
+}
+
+/// Clipped, projected, set up: appends what is visible of one triangle to `out`.
+void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, int width,
+                  int height, std::vector<TriangleSetup>* out) {
+  ScreenVertex s[3];
+  const ClipVertex* v[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i) s[i] = Project(*v[i], false, width, height);
+  const bool back = IsBackFacing(s[0], s[1], s[2]);
+  if (back && mesh.back_material < 0) return;  // culled
+  if (back) {
+    for (int i = 0; i < 3; ++i) s[i] = Project(*v[i], true, width, height);
+  }
+  TriangleSetup setup;
+  if (!SetupTriangle(s[0], s[1], s[2], width, height, &setup)) return;
+  setup.material = back ? mesh.back_material : mesh.front_material;
+  out->push_back(setup);
+}
+
+}  // namespace
+
+void Renderer::Render(const RenderScene& scene, const Camera& camera, const RenderOptions& options,
+                      Framebuffer* framebuffer) {
+  if (framebuffer->width != camera.width || framebuffer->height != camera.height) {
+    framebuffer->Resize(camera.width, camera.height);
+  }
+  eye_ = camera.EyeInWorld().cast<float>();
+  const Eigen::Matrix4f clip_from_world = (camera.Projection() * camera.View()).cast<float>();
+  VertexStage(scene, clip_from_world, options.mode, options.threads);
+  if (options.mode == ShadingMode::kWireframe) {
+    setups_.clear();
+    LineStage(scene, camera.width, camera.height);
+  } else {
+    lines_.clear();
+    PrimitiveStage(scene, options.mode, camera.width, camera.height, options.threads);
+  }
+  BinStage(camera.width, camera.height, options.tile_size);
+  ShadeContext context;
+  context.scene = &scene;
+  context.mode = options.mode;
+  context.eye = eye_;
+  TileStage(context, options.tile_size, options.threads, framebuffer);
+}
+
+// (world position, normal, uv) => (clip position, lighting or position/normal, uv)
+void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip_from_world, ShadingMode mode,
+                           int threads) {
+  vertices_.resize(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    std::vector<ClipVertex>& out = vertices_[m];
+    out.resize(mesh.positions.size());
+    const int n = static_cast<int>(mesh.positions.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 1024)
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3f& p = mesh.positions[i];
+      const Eigen::Vector3f& normal = mesh.normals[i];
+      ClipVertex& v = out[i];
+      v.clip = clip_from_world * p.homogeneous();
+      v.channels[kUv] = mesh.uvs[i][0];
+      v.channels[kUv + 1] = mesh.uvs[i][1];
+      if (mode == ShadingMode::kGouraud) {
+        PutShade(ShadePoint(scene.materials[mesh.front_material], scene.lighting, p, normal, eye_),
+                 v.channels + kFrontBlock);
+        const Shade back = mesh.back_material >= 0
+                               ? ShadePoint(scene.materials[mesh.back_material], scene.lighting, p, -normal, eye_)
+                               : Shade{};
+        PutShade(back, v.channels + kBackBlock);
+      } else {
+        for (const int block : {kFrontBlock, kBackBlock}) {
+          for (int k = 0; k < 3; ++k) {
+            v.channels[block + k] = p[k];
+            v.channels[block + 3 + k] = normal[k];
+          }
+        }
+      }
+    }
+  }
+}
+
+// Triangles in fixed chunks (the same chunks at any thread count), concatenated in order.
+void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height, int threads) {
+  struct Work {
+    int mesh, first, end;
+  };
+  std::vector<Work> work;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const int count = static_cast<int>(scene.meshes[m].triangles.size());
+    for (int first = 0; first < count; first += kChunk) work.push_back({int(m), first, std::min(count, first + kChunk)});
+  }
+  chunks_.resize(work.size());
+  const int items = static_cast<int>(work.size());
+#pragma omp parallel for schedule(dynamic) num_threads(threads) if (threads > 1)
+  for (int w = 0; w < items; ++w) {
+    const Mesh& mesh = scene.meshes[work[w].mesh];
+    const std::vector<ClipVertex>& vertices = vertices_[work[w].mesh];
+    std::vector<TriangleSetup>& out = chunks_[w];
+    out.clear();
+    std::vector<ClipVertex> clipped;
+    for (int t = work[w].first; t < work[w].end; ++t) {
+      ClipVertex v[3] = {vertices[mesh.triangles[t][0]], vertices[mesh.triangles[t][1]],
+                         vertices[mesh.triangles[t][2]]};
+      if (mode == ShadingMode::kFlat) ShadeFace(scene, mesh, eye_, v);
+      switch (ClassifyTriangle(v[0], v[1], v[2])) {
+        case ClipTest::kOutside: break;
+        case ClipTest::kInside: SetupVisible(mesh, &v[0], &v[1], &v[2], width, height, &out); break;
+        case ClipTest::kCrossing:
+          clipped.clear();
+          ClipTriangle(v[0], v[1], v[2], &clipped);
+          for (size_t i = 0; i + 2 < clipped.size(); i += 3) {
+            SetupVisible(mesh, &clipped[i], &clipped[i + 1], &clipped[i + 2], width, height, &out);
+          }
+          break;
+      }
+    }
+  }
+  setups_.clear();
+  for (const auto& chunk : chunks_) setups_.insert(setups_.end(), chunk.begin(), chunk.end());
+}
+
+// Mesh edges, clipped and projected to pixel endpoints, coloured by their material.
+void Renderer::LineStage(const RenderScene& scene, int width, int height) {
+  lines_.clear();
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    const Material& material = scene.materials[mesh.front_material];
+    for (const auto& [ia, ib] : mesh.edges) {
+      Eigen::Vector4f a = vertices_[m][ia].clip, b = vertices_[m][ib].clip;
+      if (!ClipLine(&a, &b)) continue;
+      Eigen::Vector3f colour = material.colour;
+      if (material.patterned) {
+        const uint8_t* texel = scene.pattern.Sample(mesh.uvs[ia][0], mesh.uvs[ia][1]);
+        colour = colour.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) / 255.0f);
+      }
+      LineSetup line;
+      const auto to_pixel = [&](const Eigen::Vector4f& v, int* x, int* y, float* z) {
+        *x = static_cast<int>(std::floor((v.x() / v.w() + 1.0f) * 0.5f * width));
+        *y = static_cast<int>(std::floor((1.0f - v.y() / v.w()) * 0.5f * height));
+        *z = (v.z() / v.w() + 1.0f) * 0.5f;
+      };
+      to_pixel(a, &line.x0, &line.y0, &line.z0);
+      to_pixel(b, &line.x1, &line.y1, &line.z1);
+      for (int k = 0; k < 3; ++k) line.rgb[k] = static_cast<uint8_t>(std::clamp(colour[k], 0.0f, 1.0f) * 255 + 0.5f);
+      lines_.push_back(line);
+    }
+  }
+}
+
+void Renderer::BinStage(int width, int height, int tile_size) {
+  tiles_x_ = (width + tile_size - 1) / tile_size;
+  tiles_y_ = (height + tile_size - 1) / tile_size;
+  const size_t tiles = size_t(tiles_x_) * tiles_y_;
+  triangle_bins_.resize(tiles);
+  line_bins_.resize(tiles);
+  for (auto& bin : triangle_bins_) bin.clear();
+  for (auto& bin : line_bins_) bin.clear();
+  const auto bin_box = [&](int x0, int y0, int x1, int y1, uint32_t index, std::vector<std::vector<uint32_t>>* bins) {
+    x0 = std::max(x0, 0);
+    y0 = std::max(y0, 0);
+    x1 = std::min(x1, width - 1);
+    y1 = std::min(y1, height - 1);
+    for (int ty = y0 / tile_size; ty <= y1 / tile_size && y0 <= y1; ++ty) {
+      for (int tx = x0 / tile_size; tx <= x1 / tile_size && x0 <= x1; ++tx) {
+        (*bins)[size_t(ty) * tiles_x_ + tx].push_back(index);
+      }
+    }
+  };
+  for (uint32_t i = 0; i < setups_.size(); ++i) {
+    const TriangleSetup& t = setups_[i];
+    bin_box(t.min_x, t.min_y, t.max_x, t.max_y, i, &triangle_bins_);
+  }
+  for (uint32_t i = 0; i < lines_.size(); ++i) {
+    const LineSetup& l = lines_[i];
+    bin_box(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1), i, &line_bins_);
+  }
+}
+
+void Renderer::TileStage(const ShadeContext& context, int tile_size, int threads, Framebuffer* framebuffer) {
+  const int tiles = tiles_x_ * tiles_y_;
+#pragma omp parallel for schedule(dynamic) num_threads(threads) if (threads > 1)
+  for (int index = 0; index < tiles; ++index) {
+    TileRect tile;
+    tile.x0 = (index % tiles_x_) * tile_size;
+    tile.y0 = (index / tiles_x_) * tile_size;
+    tile.x1 = std::min(tile.x0 + tile_size, framebuffer->width);
+    tile.y1 = std::min(tile.y0 + tile_size, framebuffer->height);
+    ClearTile(tile, *context.scene, framebuffer);
+    for (const uint32_t i : triangle_bins_[index]) RasterizeTriangle(setups_[i], tile, context, framebuffer);
+    for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], tile, framebuffer);
+  }
+}
+
+}  // namespace flagsim::render

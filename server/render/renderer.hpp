@@ -1,0 +1,60 @@
+// One frame, from meshes to pixels:
+//
+//   vertex stage     world -> clip space; per-vertex lighting (front and back) for Gouraud
+//   primitives       flat: per-face lighting; clip (near, far, guard band); project; facing:
+//                    cull or pick the back material; snap and set up (triangle_setup.hpp)
+//   binning          each triangle (or line) into the list of every tile its box touches,
+//                    in mesh and triangle order
+//   tiles            in parallel: sky, then the tile's triangles in order (tile_raster.hpp)
+//
+// Every stage's output is in a fixed order whatever the thread count, and each tile is drawn
+// by one thread, so the image is the same bit for bit at any number of threads.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bresenham.hpp"
+#include "camera.hpp"
+#include "clipping.hpp"
+#include "framebuffer.hpp"
+#include "mesh.hpp"
+#include "tile_raster.hpp"
+#include "triangle_setup.hpp"
+
+namespace flagsim::render {
+
+struct RenderOptions {
+  ShadingMode mode = ShadingMode::kGouraud;
+  int threads = 1;
+  int tile_size = 64;  ///< px, square tiles (the stream's tiles too)
+};
+
+class Renderer {
+ public:
+  /// Draws `scene` seen by `camera` into `framebuffer` (resized to the camera's image).
+  void Render(const RenderScene& scene, const Camera& camera, const RenderOptions& options,
+              Framebuffer* framebuffer);
+
+  /// Triangles set up in the last frame (after culling and clipping), for statistics.
+  size_t triangles_drawn() const { return setups_.size(); }
+
+ private:
+  void VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip_from_world, ShadingMode mode,
+                   int threads);
+  void PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height, int threads);
+  void LineStage(const RenderScene& scene, int width, int height);
+  void BinStage(int width, int height, int tile_size);
+  void TileStage(const ShadeContext& context, int tile_size, int threads, Framebuffer* framebuffer);
+
+  Eigen::Vector3f eye_;
+  std::vector<std::vector<ClipVertex>> vertices_;       ///< per mesh, per vertex
+  std::vector<std::vector<TriangleSetup>> chunks_;      ///< primitive stage output per chunk
+  std::vector<TriangleSetup> setups_;                   ///< all triangles, in order
+  std::vector<LineSetup> lines_;
+  int tiles_x_ = 0, tiles_y_ = 0;
+  std::vector<std::vector<uint32_t>> triangle_bins_;    ///< per tile: indices into setups_
+  std::vector<std::vector<uint32_t>> line_bins_;        ///< per tile: indices into lines_
+};
+
+}  // namespace flagsim::render

@@ -1,0 +1,116 @@
+#include "triangle_setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace flagsim::render {
+namespace {
+
+int64_t Snap(float pixels) { return static_cast<int64_t>(std::lround(double(pixels) * kSubpixels)); }
+
+/// floor(a / b) for b > 0.
+int64_t FloorDiv(int64_t a, int64_t b) { return a / b - ((a % b != 0) && (a < 0)); }
+
+/// The plane through (x_i, y_i, value_i), with its origin at pixel centre (x0 + 0.5, y0 + 0.5).
+Plane FitPlane(const float x[3], const float y[3], const float value[3], float area2, int x0, int y0) {
+  Plane plane;
+  const float e1x = x[1] - x[0], e1y = y[1] - y[0], e2x = x[2] - x[0], e2y = y[2] - y[0];
+  const float d1 = value[1] - value[0], d2 = value[2] - value[0];
+  plane.dx = (d1 * e2y - d2 * e1y) / area2;
+  plane.dy = (d2 * e1x - d1 * e2x) / area2;
+  plane.origin = value[0] + plane.dx * (x0 + 0.5f - x[0]) + plane.dy * (y0 + 0.5f - y[0]);
+  return plane;
+}
+
+}  // namespace
+
+bool IsBackFacing(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) {
+  // Counter-clockwise in the world's view (OpenGL's front) is clockwise once y points down,
+  // which makes this (snapped, so exactly the setup's) area negative.
+  const int64_t ax = Snap(a.x), ay = Snap(a.y);
+  return (Snap(b.x) - ax) * (Snap(c.y) - ay) - (Snap(b.y) - ay) * (Snap(c.x) - ax) > 0;
+}
+
+bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int width, int height,
+                   TriangleSetup* setup) {
+  // Order the vertices so that the snapped area is positive: then inside means E >= 0.
+  const ScreenVertex* v[3] = {&a, &b, &c};
+  int64_t X[3], Y[3];
+  for (int i = 0; i < 3; ++i) {
+    X[i] = Snap(v[i]->x);
+    Y[i] = Snap(v[i]->y);
+  }
+  int64_t area2 = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
+  if (area2 == 0) return false;
+  setup->back_facing = area2 > 0;
+  if (area2 < 0) {
+    std::swap(v[1], v[2]);
+    std::swap(X[1], X[2]);
+    std::swap(Y[1], Y[2]);
+    area2 = -area2;
+  }
+
+  // Pixels whose centres (p + 1/2) lie in the box of the snapped vertices, inside the image.
+  const int64_t half = kSubpixels / 2;
+  const auto first_pixel = [&](int64_t low) { return -FloorDiv(half - low, kSubpixels); };  // ceil
+  const auto last_pixel = [&](int64_t high) { return FloorDiv(high - half, kSubpixels); };
+  setup->min_x = int(std::max<int64_t>(0, first_pixel(std::min({X[0], X[1], X[2]}))));
+  setup->min_y = int(std::max<int64_t>(0, first_pixel(std::min({Y[0], Y[1], Y[2]}))));
+  setup->max_x = int(std::min<int64_t>(width - 1, last_pixel(std::max({X[0], X[1], X[2]}))));
+  setup->max_y = int(std::min<int64_t>(height - 1, last_pixel(std::max({Y[0], Y[1], Y[2]}))));
+  if (setup->min_x > setup->max_x || setup->min_y > setup->max_y) return false;
+
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    setup->edge_x[i] = X[i];
+    setup->edge_y[i] = Y[i];
+    setup->edge_dx[i] = X[j] - X[i];
+    setup->edge_dy[i] = Y[j] - Y[i];
+    // With y down and positive area the vertices run clockwise on screen: a top edge is
+    // horizontal going right, a left edge goes up.
+    const bool top = setup->edge_dy[i] == 0 && setup->edge_dx[i] > 0;
+    const bool left = setup->edge_dy[i] < 0;
+    setup->edge_bias[i] = top || left ? 0 : -1;
+  }
+
+  float x[3], y[3], values[3];
+  for (int i = 0; i < 3; ++i) {
+    x[i] = float(X[i]) / kSubpixels;
+    y[i] = float(Y[i]) / kSubpixels;
+  }
+  const float area = float(area2) / float(kSubpixels * kSubpixels);
+  const auto fit = [&](auto field) {
+    for (int i = 0; i < 3; ++i) values[i] = field(*v[i]);
+    return FitPlane(x, y, values, area, setup->min_x, setup->min_y);
+  };
+  setup->depth = fit([](const ScreenVertex& s) { return s.z; });
+  setup->inverse_w = fit([](const ScreenVertex& s) { return s.inverse_w; });
+  for (int k = 0; k < kPlaneChannels; ++k) {
+    setup->channels[k] = fit([k](const ScreenVertex& s) { return s.channels[k] * s.inverse_w; });
+  }
+  return true;
+}
+
+bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last) {
+  int64_t low = setup.min_x, high = setup.max_x;
+  const int64_t py = int64_t(y) * kSubpixels + kSubpixels / 2;
+  for (int i = 0; i < 3; ++i) {
+    // E(px) = K - M px with px the pixel index; inside when K + bias >= M px.
+    const int64_t dy = setup.edge_dy[i];
+    const int64_t k = setup.edge_dx[i] * (py - setup.edge_y[i]) + dy * (setup.edge_x[i] - kSubpixels / 2) +
+                      setup.edge_bias[i];
+    const int64_t m = dy * kSubpixels;
+    if (m > 0) {
+      high = std::min(high, FloorDiv(k, m));
+    } else if (m < 0) {
+      low = std::max(low, -FloorDiv(k, -m));  // px >= ceil(-k / -m)
+    } else if (k < 0) {
+      return false;
+    }
+  }
+  *first = int(low);
+  *last = int(high);
+  return low <= high;
+}
+
+}  // namespace flagsim::render

@@ -1,0 +1,57 @@
+// Triangle setup: a projected triangle snapped to a fixed-point grid, with its three edge
+// functions and the planes its attributes are interpolated on.
+//
+// Coverage follows the edge functions exactly: vertices are snapped to 1/256 px, a pixel is
+// covered when its centre is inside all three edges, and a centre exactly on an edge belongs
+// to the triangle only if that edge is a top or a left edge. Two triangles sharing an edge
+// therefore cover each pixel along it exactly once, and nothing between them is left out.
+// Coverage is computed a row at a time, as the span of x where all three edge functions pass
+// (integer arithmetic, so exact), which leaves the per-pixel loop with no edge tests at all.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+
+namespace flagsim::render {
+
+constexpr int kSubpixelBits = 8;
+constexpr int64_t kSubpixels = int64_t(1) << kSubpixelBits;  ///< per pixel
+constexpr int kPlaneChannels = 8;  ///< attributes interpolated per pixel
+
+/// a(x, y) = origin + dx (x - x0) + dy (y - y0), with (x0, y0) the centre of the box's first pixel.
+struct Plane {
+  float origin = 0, dx = 0, dy = 0;
+};
+
+/// One projected vertex: window position and what is interpolated.
+struct ScreenVertex {
+  float x = 0, y = 0;    ///< px from the top-left corner of the image, y down
+  float z = 0;           ///< window depth, 0 (near) .. 1 (far)
+  float inverse_w = 0;   ///< 1 / w_clip, for perspective-correct interpolation
+  float channels[kPlaneChannels] = {};
+};
+
+struct TriangleSetup {
+  int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  ///< px, inclusive, inside the image
+  // Edge i runs from vertex i to vertex i + 1, in subpixels: E(P) = dx (Py - y) - dy (Px - x).
+  int64_t edge_x[3] = {}, edge_y[3] = {}, edge_dx[3] = {}, edge_dy[3] = {};
+  int64_t edge_bias[3] = {};  ///< 0 for top and left edges, -1 for the others
+  Plane depth;                ///< window depth, linear in the image
+  Plane inverse_w;            ///< 1 / w
+  Plane channels[kPlaneChannels];  ///< channel / w: divide by inverse_w for the channel
+  bool back_facing = false;   ///< the vertices run clockwise as seen (after the y flip: counter)
+  int material = 0;           ///< index into the scene's materials
+};
+
+/// Snaps and sets up the triangle; false if it covers no pixel centre of a width x height
+/// image. `back_facing` is reported from the winding; vertex order is then fixed internally.
+bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int width, int height,
+                   TriangleSetup* setup);
+
+/// The winding of a projected triangle before setup: true if it faces away from the camera.
+bool IsBackFacing(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c);
+
+/// The covered pixels of row y: [*first, *last] within [min_x, max_x]; false if none.
+bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last);
+
+}  // namespace flagsim::render
