@@ -1,0 +1,121 @@
+#include "render/renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace flagsim::render {
+namespace {
+
+/// The default scene with a wavy flag of cols x rows nodes.
+RenderScene WavyFlagScene(int cols = 32, int rows = 24) {
+  RenderScene scene = DefaultRenderScene(3.0f);
+  std::vector<float> x, y, z;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const float u = float(c) / (cols - 1), v = float(r) / (rows - 1);
+      x.push_back(1.5f * u);
+      y.push_back(2.98f - 1.0f * v - 0.1f * u * u);
+      z.push_back(0.15f * u * std::sin(9 * u + 2 * v));
+    }
+  }
+  UpdateFlagMesh(cols, rows, x.data(), y.data(), z.data(), &scene.meshes[0]);
+  return scene;
+}
+
+Camera SmallCamera() {
+  Camera camera;
+  camera.width = 160;
+  camera.height = 90;
+  return camera;
+}
+
+TEST(Renderer, SameImageAtAnyThreadCount) {
+  const RenderScene scene = WavyFlagScene();
+  Renderer renderer;
+  for (const ShadingMode mode : {ShadingMode::kWireframe, ShadingMode::kFlat, ShadingMode::kGouraud, ShadingMode::kPhong}) {
+    Camera camera;  // full size: many tiles
+    Framebuffer reference;
+    RenderOptions options;
+    options.mode = mode;
+    renderer.Render(scene, camera, options, &reference);
+    for (const int threads : {2, 3, 4}) {
+      options.threads = threads;
+      Framebuffer framebuffer;
+      renderer.Render(scene, camera, options, &framebuffer);
+      EXPECT_EQ(framebuffer.rgb, reference.rgb) << int(mode) << " at " << threads << " threads";
+    }
+  }
+}
+
+TEST(Renderer, TheFlagIsDrawnInFrontOfTheSky) {
+  const RenderScene scene = WavyFlagScene();
+  Renderer renderer;
+  Framebuffer framebuffer;
+  renderer.Render(scene, SmallCamera(), RenderOptions{}, &framebuffer);
+  // Project the middle of the flag and check that pixel is cloth (not sky: the sky is bluish
+  // and brightest in blue; the cloth's yellow or dark blue differs from the sky gradient).
+  const Camera camera = SmallCamera();
+  const Eigen::Vector4d clip = camera.Projection() * camera.View() * Eigen::Vector4d(0.75, 2.45, 0.0, 1.0);
+  const int px = int((clip.x() / clip.w() + 1) / 2 * camera.width);
+  const int py = int((1 - clip.y() / clip.w()) / 2 * camera.height);
+  ASSERT_TRUE(px >= 0 && px < camera.width && py >= 0 && py < camera.height);
+  EXPECT_LT(framebuffer.depth[size_t(py) * camera.width + px], 1.0f);
+  EXPECT_GT(renderer.triangles_drawn(), 1000u);
+}
+
+TEST(Renderer, ModesDifferAndPhongIsClosestToGouraud) {
+  RenderScene scene = WavyFlagScene(16, 12);  // coarse: the modes' differences show
+  scene.meshes.resize(1);                     // the flag alone
+  Camera camera;
+  camera.width = 640;
+  camera.height = 360;
+  Renderer renderer;
+  Framebuffer images[4];
+  for (int mode = 0; mode < 4; ++mode) {
+    RenderOptions options;
+    options.mode = ShadingMode(mode);
+    renderer.Render(scene, camera, options, &images[mode]);
+  }
+  const auto difference = [&](int a, int b) {
+    double sum = 0;
+    for (size_t i = 0; i < images[a].rgb.size(); ++i) sum += std::abs(int(images[a].rgb[i]) - int(images[b].rgb[i]));
+    return sum;
+  };
+  EXPECT_GT(difference(0, 2), 0);
+  EXPECT_GT(difference(1, 2), 0);
+  EXPECT_LT(difference(3, 2), difference(3, 1));  // Gouraud approximates Phong better than flat
+}
+
+TEST(Renderer, ACameraInsideTheSceneClipsAtTheNearPlane) {
+  const RenderScene scene = WavyFlagScene();
+  Camera camera = SmallCamera();
+  camera.eye = Eigen::Vector3d(0.7, 2.5, 0.02);  // right against the cloth
+  camera.target = Eigen::Vector3d(0.7, 2.5, -1.0);
+  Renderer renderer;
+  Framebuffer one, two;
+  renderer.Render(scene, camera, RenderOptions{}, &one);
+  RenderOptions options;
+  options.threads = 2;
+  renderer.Render(scene, camera, options, &two);
+  EXPECT_EQ(one.rgb, two.rgb);
+  for (const float depth : one.depth) {
+    EXPECT_GE(depth, 0.0f);
+    EXPECT_LE(depth, 1.0f);
+  }
+}
+
+TEST(Renderer, ImageSizeFollowsTheCamera) {
+  const RenderScene scene = WavyFlagScene();
+  Renderer renderer;
+  Framebuffer framebuffer;
+  Camera camera = SmallCamera();
+  camera.width = 77;
+  camera.height = 33;
+  renderer.Render(scene, camera, RenderOptions{}, &framebuffer);
+  EXPECT_EQ(framebuffer.width, 77);
+  EXPECT_EQ(framebuffer.rgb.size(), 77u * 33 * 3);
+}
+
+}  // namespace
+}  // namespace flagsim::render

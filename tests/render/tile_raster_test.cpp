@@ -1,0 +1,91 @@
+#include "render/tile_raster.hpp"
+
+#include <gtest/gtest.h>
+
+namespace flagsim::render {
+namespace {
+
+/// A scene of one plain white material, so that colour = D + S.
+RenderScene White() {
+  RenderScene scene;
+  Material white;
+  white.colour = Eigen::Vector3f(1, 1, 1);
+  scene.materials = {white};
+  return scene;
+}
+
+ScreenVertex At(float x, float y, float z, float diffuse) {
+  ScreenVertex v;
+  v.x = x;
+  v.y = y;
+  v.z = z;
+  v.inverse_w = 1;
+  v.channels[0] = v.channels[1] = v.channels[2] = diffuse;
+  return v;
+}
+
+TEST(TileRaster, GouraudColoursAreTheInterpolatedLight) {
+  // D = x / 32 at every vertex (S = 0): each pixel shows round(255 (x + 0.5) / 32).
+  const RenderScene scene = White();
+  Framebuffer framebuffer;
+  framebuffer.Resize(32, 32);
+  TriangleSetup t;
+  ASSERT_TRUE(SetupTriangle(At(0, 0, 0.5f, 0), At(32, 0, 0.5f, 1), At(0, 32, 0.5f, 0), 32, 32, &t));
+  ShadeContext context;
+  context.scene = &scene;
+  RasterizeTriangle(t, TileRect{0, 0, 32, 32}, context, &framebuffer);
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{10, 3}, std::pair{20, 5}, std::pair{5, 20}}) {
+    const int expected = int(255 * (x + 0.5f) / 32 + 0.5f);
+    EXPECT_NEAR(framebuffer.Pixel(x, y)[0], expected, 1) << x << "," << y;
+  }
+  EXPECT_EQ(framebuffer.Pixel(31, 31)[0], 0);  // outside: untouched
+}
+
+TEST(TileRaster, TheNearerTriangleWinsInEitherOrder) {
+  const RenderScene scene = White();
+  ShadeContext context;
+  context.scene = &scene;
+  TriangleSetup near_dark, far_light;
+  ASSERT_TRUE(SetupTriangle(At(0, 0, 0.3f, 0.2f), At(16, 0, 0.3f, 0.2f), At(0, 16, 0.3f, 0.2f), 16, 16, &near_dark));
+  ASSERT_TRUE(SetupTriangle(At(0, 0, 0.7f, 0.9f), At(16, 0, 0.7f, 0.9f), At(0, 16, 0.7f, 0.9f), 16, 16, &far_light));
+  for (const bool near_first : {true, false}) {
+    Framebuffer framebuffer;
+    framebuffer.Resize(16, 16);
+    const TileRect tile{0, 0, 16, 16};
+    RasterizeTriangle(near_first ? near_dark : far_light, tile, context, &framebuffer);
+    RasterizeTriangle(near_first ? far_light : near_dark, tile, context, &framebuffer);
+    EXPECT_EQ(framebuffer.Pixel(3, 3)[0], 51) << near_first;  // 0.2 * 255
+    EXPECT_FLOAT_EQ(framebuffer.depth[3 * 16 + 3], 0.3f);
+  }
+}
+
+TEST(TileRaster, OnlyTheTileIsTouched) {
+  const RenderScene scene = White();
+  ShadeContext context;
+  context.scene = &scene;
+  TriangleSetup t;
+  ASSERT_TRUE(SetupTriangle(At(0, 0, 0.5f, 1), At(32, 0, 0.5f, 1), At(0, 32, 0.5f, 1), 32, 32, &t));
+  Framebuffer framebuffer;
+  framebuffer.Resize(32, 32);
+  RasterizeTriangle(t, TileRect{8, 0, 16, 8}, context, &framebuffer);
+  EXPECT_EQ(framebuffer.Pixel(10, 2)[0], 255);
+  EXPECT_EQ(framebuffer.Pixel(2, 2)[0], 0);
+  EXPECT_EQ(framebuffer.Pixel(10, 10)[0], 0);
+}
+
+TEST(TileRaster, ClearPaintsTheSkyGradientAndFarDepth) {
+  RenderScene scene = White();
+  scene.sky_top = Eigen::Vector3f(0, 0, 1);
+  scene.sky_horizon = Eigen::Vector3f(1, 0, 0);
+  Framebuffer framebuffer;
+  framebuffer.Resize(4, 11);
+  std::fill(framebuffer.depth.begin(), framebuffer.depth.end(), 0.0f);
+  ClearTile(TileRect{0, 0, 4, 11}, scene, &framebuffer);
+  EXPECT_EQ(framebuffer.Pixel(2, 0)[2], 255);
+  EXPECT_EQ(framebuffer.Pixel(2, 10)[0], 255);
+  EXPECT_EQ(framebuffer.Pixel(2, 5)[0], 128);
+  EXPECT_EQ(framebuffer.depth[7], 1.0f);
+}
+
+}  // namespace
+}  // namespace flagsim::render
