@@ -12,6 +12,8 @@ packages=(
   libcli11-dev                                   # command lines of flagd and flagctl
   libtomlplusplus-dev                            # scene files (TOML)
   libspdlog-dev                                  # server logging
+  libzstd-dev libxxhash-dev                      # tile compression, image and state hashes
+  libpng-dev                                     # snapshots and exported frames
   libgtest-dev libbenchmark-dev                  # tests and benchmarks
   iproute2 nftables util-linux                   # private network namespaces for the udpm tests
 )

@@ -32,8 +32,8 @@ ClothState<Real> RestState(const ClothModel<Real>& model) {
   return state;
 }
 
-/// FNV-1a 64 over the bits of positions then velocities: equal hashes mean equal states, bit
-/// for bit. Time and step are not included (they are published beside the hash).
+/// XXH3-64 over the bytes of x, y, z, vx, vy, vz in that order: equal hashes mean equal
+/// states, bit for bit. Time and step are not included (they are published beside the hash).
 template <typename Real>
 uint64_t StateHash(const ClothState<Real>& state);
 
