@@ -1,5 +1,5 @@
-// flagctl: the thin client. Steers a flagd server (wind, set, reset, refresh), reads its
-// streams (params, status, watch) and records sessions (record).
+// flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, refresh), reads
+// its streams (params, status, watch, snapshot) and records sessions (record).
 // Exit codes: 0 ok, 2 usage, 3 rejected by the server (its reason printed), 4 no answer.
 #include <CLI/CLI.hpp>
 
@@ -12,12 +12,16 @@
 #include "bus.hpp"
 #include "channels.hpp"
 #include "command_client.hpp"
+#include "flagsim/camera_command_t.hpp"
+#include "flagsim/frame_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "flagsim/wind_command_t.hpp"
 #include "log_recorder.hpp"
+#include "png_file.hpp"
 #include "printing.hpp"
 #include "stream_reader.hpp"
+#include "tile_assembler.hpp"
 
 namespace flagsim {
 namespace {
@@ -137,6 +141,15 @@ int Watch(const Globals& globals, double duration) {
       },
       &invalid, 1000);
   SubscribeDecoded<status_t>(link.bus, link.channels.status, [&status](const status_t& s) { status = s; }, &invalid);
+  int64_t frames = 0, tiles = 0, tile_bytes = 0;
+  SubscribeDecoded<frame_t>(link.bus, link.channels.frame, [&frames](const frame_t&) { ++frames; }, &invalid, 1000);
+  SubscribeDecoded<tile_t>(
+      link.bus, link.channels.tile,
+      [&](const tile_t& tile) {
+        ++tiles;
+        tile_bytes += tile.num_bytes;
+      },
+      &invalid, 10000);
   const double start = MonotonicSeconds();
   double last_line = start;
   while (!g_stop.load()) {
@@ -151,15 +164,64 @@ int Watch(const Globals& globals, double duration) {
                 states > 0 ? state_bytes / 1024.0 / states : 0.0,
                 static_cast<unsigned long long>(latest->state_hash), TipText(*latest).c_str());
     if (status) std::printf("  rtf %.2f  step %.0f us", status->real_time_factor, status->step_time_us);
+    if (frames > 0) {
+      std::printf("  FRAME %4.1f Hz %5.1f tiles/frame %7.1f KB/s", frames / elapsed, double(tiles) / frames,
+                  tile_bytes / 1024.0 / elapsed);
+    }
     std::printf("\n");
     std::fflush(stdout);
-    states = state_bytes = 0;
+    states = state_bytes = frames = tiles = tile_bytes = 0;
     last_line = MonotonicSeconds();
   }
   if (invalid > 0) std::fprintf(stderr, "flagctl: %lld undecodable message(s) ignored\n", static_cast<long long>(invalid));
   if (total_states == 0) return link.NoAnswer("STATE");
   std::printf("%lld states received\n", static_cast<long long>(total_states));
   return kOk;
+}
+
+/// Asks for a keyframe, assembles the tiles, checks the frame hash, writes a PNG.
+int Snapshot(const Globals& globals, const std::string& path) {
+  Link link(globals);
+  CommandClient client(link.bus, link.channels, globals.timeout);
+  TileAssembler assembler;
+  bool complete = false, keyframe_incomplete = false;
+  bool waiting = false;  // for frames after our request
+  SubscribeDecoded<tile_t>(link.bus, link.channels.tile, [&](const tile_t& tile) { assembler.AddTile(tile); },
+                           nullptr, 10000);
+  SubscribeDecoded<frame_t>(
+      link.bus, link.channels.frame,
+      [&](const frame_t& manifest) {
+        const auto result = assembler.AddManifest(manifest);
+        if (!waiting) return;
+        complete |= result == TileAssembler::FrameResult::kComplete;
+        keyframe_incomplete |= manifest.keyframe && result != TileAssembler::FrameResult::kComplete;
+      },
+      nullptr, 1000);
+  const double deadline = MonotonicSeconds() + globals.timeout;
+  while (!complete) {
+    // A keyframe that arrived with tiles missing calls for another request (a new id).
+    keyframe_incomplete = false;
+    const CommandOutcome outcome = client.Send(link.channels.refresh, refresh_request_t{});
+    if (outcome.result != CommandOutcome::kAccepted) return Report(link, outcome);
+    waiting = true;
+    const double left = deadline - MonotonicSeconds();
+    if (left <= 0 || !HandleUntil(link.bus, left, [&] { return complete || keyframe_incomplete; })) break;
+  }
+  if (!complete) return link.NoAnswer("complete frame");
+  const std::string problem = WritePng(path, assembler.width(), assembler.height(), assembler.image().data());
+  if (!problem.empty()) {
+    std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
+    return 1;
+  }
+  std::printf("%s: %d x %d, frame %lld\n", path.c_str(), assembler.width(), assembler.height(),
+              static_cast<long long>(assembler.last_complete_frame()));
+  return kOk;
+}
+
+int Camera(const Globals& globals, camera_command_t command) {
+  Link link(globals);
+  CommandClient client(link.bus, link.channels, globals.timeout);
+  return Report(link, client.Send(link.channels.camera, command));
 }
 
 /// Records every channel with the prefix to an LCM log until `duration` or an interrupt.
@@ -237,11 +299,50 @@ int main(int argc, char** argv) {
   record->add_option("--duration", record_duration, "seconds to record (0: until interrupted)")
       ->check(CLI::NonNegativeNumber);
 
+  std::string snapshot_path;
+  CLI::App* snapshot = app.add_subcommand("snapshot", "ask for a full frame and write it as a PNG");
+  snapshot->add_option("-o,--output", snapshot_path, "the PNG file to write")->required();
+
+  camera_command_t camera_command{};
+  camera_command.factor = 1;
+  CLI::App* camera = app.add_subcommand("camera", "move the camera (angles in degrees, distances in m)");
+  camera->require_subcommand(1);
+  double degrees = 0, degrees2 = 0;
+  std::vector<double> point;
+  const auto add_move = [&](const char* name, const char* help, int8_t operation) {
+    CLI::App* move = camera->add_subcommand(name, help);
+    move->callback([&camera_command, operation] { camera_command.operation = operation; });
+    return move;
+  };
+  add_move("rotate-x", "turn the scene about the x axis through the target", camera_command_t::ROTATE_X)
+      ->add_option("degrees", degrees)->required();
+  add_move("rotate-y", "turn the scene about the y (up) axis through the target", camera_command_t::ROTATE_Y)
+      ->add_option("degrees", degrees)->required();
+  add_move("rotate-z", "turn the scene about the z axis through the target", camera_command_t::ROTATE_Z)
+      ->add_option("degrees", degrees)->required();
+  CLI::App* orbit = add_move("orbit", "move the eye around the target", camera_command_t::ORBIT);
+  orbit->add_option("azimuth", degrees, "degrees")->required();
+  orbit->add_option("elevation", degrees2, "degrees")->required();
+  add_move("translate", "move eye and target by X Y Z", camera_command_t::TRANSLATE)
+      ->add_option("offset", point, "X Y Z in m")->expected(3)->required();
+  add_move("look-at", "aim at the point X Y Z", camera_command_t::LOOK_AT)
+      ->add_option("point", point, "X Y Z in m")->expected(3)->required();
+  CLI::App* scale = add_move("scale", "scale the scene about a point (default: the origin)", camera_command_t::SCALE);
+  scale->add_option("factor", camera_command.factor, "2 doubles the apparent size")->required();
+  scale->add_option("--about", point, "X Y Z in m")->expected(3);
+  CLI::App* size = add_move("size", "set the image size", camera_command_t::SET_IMAGE_SIZE);
+  size->add_option("width", camera_command.width, "px")->required();
+  size->add_option("height", camera_command.height, "px")->required();
+  add_move("reset", "back to the scene's camera", camera_command_t::RESET);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? kOk : kUsage;
   }
+  camera_command.angle = degrees * M_PI / 180;
+  camera_command.angle2 = degrees2 * M_PI / 180;
+  for (size_t k = 0; k < point.size() && k < 3; ++k) camera_command.vector[k] = point[k];
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
 
@@ -255,6 +356,8 @@ int main(int argc, char** argv) {
     if (command == "refresh") return Refresh(globals);
     if (command == "watch") return Watch(globals, watch_duration);
     if (command == "record") return Record(globals, record_path, record_duration);
+    if (command == "snapshot") return Snapshot(globals, snapshot_path);
+    if (command == "camera") return Camera(globals, camera_command);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());
     return 1;

@@ -58,7 +58,7 @@ void PrintParams(const params_t& params, std::ostream& out) {
 }
 
 void PrintStatus(const status_t& status, std::ostream& out) {
-  char text[2048];
+  char text[4096];
   std::snprintf(text, sizeof(text),
                 "uptime:            %.1f s\n"
                 "sim time:          %.3f s (step %lld)\n"
@@ -66,13 +66,16 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 "steps per second:  %.1f (%d substeps each, %.1f us per step)\n"
                 "flag:              %d nodes, %s, %d thread(s)%s\n"
                 "state rate:        %.1f Hz (%.1f us to publish)\n"
+                "frames:            %.1f Hz, %.0f us to draw, %.0f us to encode, %.1f tiles and %.0f bytes each, %lld skipped\n"
                 "bytes per second:  %.0f\n"
                 "commands:          %lld accepted, %lld rejected, %lld undecodable dropped\n"
                 "recoveries:        %lld\n",
                 status.uptime, status.sim_time, static_cast<long long>(status.step), status.real_time_factor,
                 status.steps_per_second, status.substeps, status.step_time_us, status.num_nodes,
                 status.integrator.c_str(), status.threads, status.sleeping ? ", sleeping" : "",
-                status.state_rate_hz, status.publish_time_us, status.bytes_per_second,
+                status.state_rate_hz, status.publish_time_us, status.frame_rate_hz, status.render_time_us,
+                status.encode_time_us, status.tiles_per_frame, status.frame_bytes,
+                static_cast<long long>(status.frames_skipped), status.bytes_per_second,
                 static_cast<long long>(status.commands_accepted), static_cast<long long>(status.commands_rejected),
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;

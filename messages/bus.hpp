@@ -1,8 +1,10 @@
 // The transport seam: an LCM instance built from a URL, publishing encoded messages and
 // delivering raw bytes (decode them with CheckedDecode). Unit tests build it on memq://.
-// Not thread-safe: one thread publishes and calls Handle().
+// One thread subscribes, calls Handle() and uses the typed Publish; Publish of raw bytes may
+// also be called from other threads (LCM serialises its sends).
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -55,7 +57,7 @@ class Bus {
   /// Dispatches every message already waiting, without blocking.
   void HandleAll();
 
-  uint64_t bytes_published() const { return bytes_published_; }
+  uint64_t bytes_published() const { return bytes_published_.load(); }
   const std::string& url() const { return url_; }
 
  private:
@@ -64,7 +66,7 @@ class Bus {
   std::unique_ptr<lcm::LCM> lcm_;
   std::vector<std::unique_ptr<Subscriber>> subscribers_;
   std::vector<uint8_t> scratch_;
-  uint64_t bytes_published_ = 0;
+  std::atomic<uint64_t> bytes_published_{0};
 };
 
 }  // namespace flagsim

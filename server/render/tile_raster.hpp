@@ -7,16 +7,10 @@
 
 #include "framebuffer.hpp"
 #include "mesh.hpp"
+#include "shading_mode.hpp"
 #include "triangle_setup.hpp"
 
 namespace flagsim::render {
-
-enum class ShadingMode {
-  kWireframe,  ///< mesh edges only, Bresenham lines with a depth test
-  kFlat,       ///< one lighting value per triangle
-  kGouraud,    ///< lighting per vertex, interpolated (perspective-correct)
-  kPhong,      ///< lighting per pixel from interpolated normals: the reference
-};
 
 /// Pixels [x0, x1) x [y0, y1) of the image.
 struct TileRect {

@@ -152,10 +152,16 @@ ParameterTable::ParameterTable() {
            &Scene::sim, &SimParams::integrator, "time integrator"),
       Integer("threads", 1, 64, &SimParams::threads, "worker threads for forces and integration"),
       Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, &Scene::service,
-           &ServiceSettings::state_rate, "STATE messages per second"),
+           &ServiceSettings::state_rate, "STATE messages per second of simulated time"),
+      Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120, &Scene::service, &ServiceSettings::frame_rate,
+           "frames drawn and streamed per second of simulated time; 0: none"),
+      Make("shading", "", ParameterKind::kChoice, 0, double(render::ShadingModeNames().size() - 1),
+           &Scene::service, &ServiceSettings::shading, "how frames are shaded"),
   };
+  // The names of each choice parameter.
   for (Parameter& parameter : parameters_) {
-    if (parameter.kind == ParameterKind::kChoice) parameter.choices = sim::IntegratorNames();
+    if (parameter.name == "integrator") parameter.choices = sim::IntegratorNames();
+    if (parameter.name == "shading") parameter.choices = render::ShadingModeNames();
   }
 }
 

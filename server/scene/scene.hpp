@@ -5,13 +5,17 @@
 #include <cstdint>
 #include <string>
 
+#include "render/camera.hpp"
+#include "render/shading_mode.hpp"
 #include "sim/sim_params.hpp"
 #include "sim/wind_field.hpp"
 
 namespace flagsim {
 
 struct ServiceSettings {
-  double state_rate = 60.0;  ///< Hz, STATE messages per second of wall time
+  double state_rate = 60.0;  ///< Hz, STATE messages per second of simulated time
+  double frame_rate = 30.0;  ///< Hz, frames per second of simulated time; 0: no frames
+  render::ShadingMode shading = render::ShadingMode::kGouraud;
 };
 
 struct Scene {
@@ -21,6 +25,7 @@ struct Scene {
   sim::SimParams sim;
   sim::WindSettings wind;
   ServiceSettings service;
+  render::Camera camera;       ///< where frames are seen from, and their size
 };
 
 }  // namespace flagsim

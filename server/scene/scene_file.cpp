@@ -3,12 +3,14 @@
 #include <toml++/toml.h>
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string_view>
 #include <utility>
 
 #include "parameter_table.hpp"
+#include "render/camera_moves.hpp"
 
 namespace flagsim {
 
@@ -69,6 +71,49 @@ void ReadWind(const toml::table& table, const std::string& source, Scene* scene)
   }
 }
 
+Eigen::Vector3d Vector(const toml::node& node, const std::string& what, const std::string& source) {
+  const toml::array* array = node.as_array();
+  if (array == nullptr || array->size() != 3) throw SceneError(Where(source, node) + what + " must be [x, y, z] in m");
+  Eigen::Vector3d vector;
+  for (int k = 0; k < 3; ++k) vector[k] = Number(*array->get(k), what, source);
+  if (!vector.allFinite() || vector.norm() > render::CameraMove::kMaxDistance) {
+    throw SceneError(Where(source, node) + what + " must be finite, within 1000 m of the origin");
+  }
+  return vector;
+}
+
+int Pixels(const toml::node& node, const std::string& what, int most, const std::string& source) {
+  const auto value = node.value<int64_t>();
+  if (!value || *value < render::CameraMove::kMinSize || *value > most) {
+    throw SceneError(Where(source, node) + what + " must be an integer, 16 .. " + std::to_string(most) + " px");
+  }
+  return static_cast<int>(*value);
+}
+
+void ReadCamera(const toml::table& table, const std::string& source, Scene* scene) {
+  render::Camera& camera = scene->camera;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    if (name == "eye") {
+      camera.eye = Vector(node, "camera.eye", source);
+    } else if (name == "target") {
+      camera.target = Vector(node, "camera.target", source);
+    } else if (name == "fov") {
+      const double degrees = Number(node, "camera.fov", source);
+      if (!(degrees >= 10 && degrees <= 120)) throw SceneError(Where(source, node) + "camera.fov: allowed 10 .. 120 degrees");
+      camera.fov_y = degrees * M_PI / 180;
+    } else if (name == "width") {
+      camera.width = Pixels(node, "camera.width", render::CameraMove::kMaxWidth, source);
+    } else if (name == "height") {
+      camera.height = Pixels(node, "camera.height", render::CameraMove::kMaxHeight, source);
+    } else {
+      throw SceneError(Where(source, node) + "unknown key camera." + name +
+                       "; known: eye, target, fov, width, height");
+    }
+  }
+  if ((camera.target - camera.eye).norm() < 1e-3) throw SceneError(source + ": camera.eye and camera.target coincide");
+}
+
 const toml::table& Table(const toml::node& node, const std::string& what, const std::string& source) {
   if (const toml::table* table = node.as_table()) return *table;
   throw SceneError(Where(source, node) + what + " must be a table, [" + what + "]");
@@ -99,9 +144,11 @@ Scene ParseScene(const std::string& text, const std::string& source) {
       ReadParameters(Table(node, name, source), source, &scene);
     } else if (name == "wind") {
       ReadWind(Table(node, name, source), source, &scene);
+    } else if (name == "camera") {
+      ReadCamera(Table(node, name, source), source, &scene);
     } else {
       throw SceneError(Where(source, node) + "unknown key '" + name +
-                       "'; known: name, description, seed, [parameters], [wind]");
+                       "'; known: name, description, seed, [parameters], [wind], [camera]");
     }
   }
   for (const std::string& problem :

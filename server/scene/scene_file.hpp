@@ -4,6 +4,7 @@
 //   name = "gale"                      description = "..."            seed = 3
 //   [parameters]   any name of the parameter table, e.g.  stiffness = 4000
 //   [wind]         velocity = [vx, vy, vz] (m/s)   gust = 0.4   ramp_time = 0 (s)
+//   [camera]       eye = [x, y, z]   target = [x, y, z] (m)   fov = 40 (degrees)   width, height (px)
 #pragma once
 
 #include <stdexcept>

@@ -27,6 +27,7 @@ CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& sessio
   Subscribe<wind_command_t>(channels.wind, &CommandIntake::ApplyWind);
   Subscribe<param_command_t>(channels.param, &CommandIntake::ApplyParams);
   Subscribe<refresh_request_t>(channels.refresh, &CommandIntake::ApplyRefresh);
+  Subscribe<camera_command_t>(channels.camera, &CommandIntake::ApplyCamera);
 }
 
 template <class Command>
@@ -93,9 +94,22 @@ std::string CommandIntake::ApplyParams(const param_command_t& command) {
   return problem;
 }
 
-std::string CommandIntake::ApplyRefresh(const refresh_request_t&) {
-  refresh_requested_ = true;  // coalesced: many requests before the next publish make one
+std::string CommandIntake::ApplyRefresh(const refresh_request_t& command) {
+  if (command.sequence < 0) return "sequence: " + std::to_string(command.sequence) + "; allowed 0 and up";
+  refresh_request_ = command.sequence;  // coalesced: requests before the next frame make one keyframe
   return "";
+}
+
+std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
+  render::CameraMove move;
+  move.operation = command.operation;
+  move.angle = command.angle;
+  move.angle2 = command.angle2;
+  move.vector = Eigen::Vector3d(command.vector[0], command.vector[1], command.vector[2]);
+  move.factor = command.factor;
+  move.width = command.width;
+  move.height = command.height;
+  return session_.ApplyCamera(move);
 }
 
 void CommandIntake::Drop(const std::string& channel, const std::string& reason) {

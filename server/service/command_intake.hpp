@@ -13,6 +13,7 @@
 #include "bus.hpp"
 #include "channels.hpp"
 #include "flagsim/ack_t.hpp"
+#include "flagsim/camera_command_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "flagsim/wind_command_t.hpp"
@@ -32,8 +33,9 @@ class CommandIntake {
 
   /// True once after any accepted command that changed parameters (PARAMS is due).
   bool TakeParamsChanged() { return std::exchange(params_changed_, false); }
-  /// True once after a REFRESH request (a full STATE and PARAMS are due).
-  bool TakeRefreshRequested() { return std::exchange(refresh_requested_, false); }
+  /// Once after REFRESH requests: the latest request id (a full STATE and PARAMS and a
+  /// keyframe are due); -1 when none came.
+  int64_t TakeRefreshRequest() { return std::exchange(refresh_request_, -1); }
 
  private:
   template <class Command>
@@ -45,6 +47,7 @@ class CommandIntake {
   std::string ApplyWind(const wind_command_t& command);
   std::string ApplyParams(const param_command_t& command);
   std::string ApplyRefresh(const refresh_request_t& command);
+  std::string ApplyCamera(const camera_command_t& command);
 
   void Drop(const std::string& channel, const std::string& reason);
 
@@ -54,7 +57,7 @@ class CommandIntake {
   ServerStats& stats_;
   std::map<std::string, ack_t> last_ack_;  ///< per client id: the answer to its latest command
   bool params_changed_ = false;
-  bool refresh_requested_ = false;
+  int64_t refresh_request_ = -1;
   double last_drop_log_ = -1;  ///< wall s of the last logged drop (drops are logged once a second)
   int64_t drops_since_log_ = 0;
 };

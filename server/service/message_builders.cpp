@@ -1,5 +1,7 @@
 #include "message_builders.hpp"
 
+#include <algorithm>
+
 #include "parameter_table.hpp"
 #include "sim/integrator.hpp"
 
@@ -77,6 +79,12 @@ status_t MakeStatusMessage(const Session& session, const ServerStats& stats, con
   message.publish_time_us = mean_us(stats.publish_seconds, stats.states_published);
   message.state_rate_hz = per_second(double(stats.states_published));
   message.frame_rate_hz = per_second(double(stats.frames_published));
+  message.render_time_us = mean_us(stats.render_seconds, stats.frames_published);
+  message.encode_time_us = mean_us(stats.encode_seconds, stats.frames_published);
+  const double frames = double(std::max<int64_t>(stats.frames_published, 1));
+  message.tiles_per_frame = double(stats.tiles_published) / frames;
+  message.frame_bytes = stats.tile_bytes / frames;
+  message.frames_skipped = stats.frames_skipped;
   message.bytes_per_second = per_second(window.bytes);
   message.commands_accepted = stats.commands_accepted;
   message.commands_rejected = stats.commands_rejected;

@@ -21,7 +21,8 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
       channels_(channels),
       options_(options),
       session_(scene),
-      intake_(bus, channels, session_, stats_) {}
+      intake_(bus, channels, session_, stats_),
+      paced_(bus) {}
 
 void Server::Run(const std::atomic<bool>& stop) {
   while (!stop.load()) {
@@ -42,6 +43,7 @@ double Server::Tick(double now) {
   bus_.HandleAll();
   StepDue(now);
   PublishDue(now);
+  FrameDue();
   if (options_.fast) return 0;
   const double until_step = session_.scene().sim.dt - accumulator_;
   return std::clamp(std::min(until_step, next_second_ - now), 0.0, kMaxWait);
@@ -70,14 +72,24 @@ void Server::StepDue(double now) {
       PublishState();
       next_state_time_ = std::max(next_state_time_ + 1.0 / session_.scene().service.state_rate, time);
     }
+    const double frame_rate = session_.scene().service.frame_rate;
+    if (frame_rate > 0 && time >= next_frame_time_) {
+      frame_due_ = true;
+      next_frame_time_ = std::max(next_frame_time_ + 1.0 / frame_rate, time);
+    }
     if (end > deadline) break;
   }
   if (options_.fast) accumulator_ = 0;
 }
 
 void Server::PublishDue(double now) {
-  const bool refresh = intake_.TakeRefreshRequested();
-  if (refresh) PublishState();
+  const int64_t request = intake_.TakeRefreshRequest();
+  const bool refresh = request >= 0;
+  if (refresh) {
+    PublishState();
+    tiles_.RequestKeyframe(request);
+    frame_due_ = true;  // the keyframe goes out now, not at the next frame time
+  }
   if (intake_.TakeParamsChanged() || refresh) PublishParams();
   if (now >= next_second_) {
     PublishParams();
@@ -91,6 +103,34 @@ void Server::PublishState() {
   bus_.Publish(channels_.state, MakeStateMessage(session_, UnixMicros()));
   stats_.publish_seconds += MonotonicSeconds() - start;
   ++stats_.states_published;
+}
+
+// state => frame => changed tiles => paced publisher (tiles, then the manifest)
+void Server::FrameDue() {
+  if (!frame_due_ || session_.scene().service.frame_rate <= 0) return;
+  frame_due_ = false;
+  if (paced_.queued() > 0) {  // still sending the last frame: skip this one
+    ++stats_.frames_skipped;
+    return;
+  }
+  const int threads = session_.scene().sim.threads;
+  const double start = MonotonicSeconds();
+  const render::Framebuffer& image = session_.RenderFrame(threads);
+  const double rendered = MonotonicSeconds();
+  FrameInfo info;
+  info.utime = UnixMicros();
+  info.step = session_.simulation().state().step;
+  info.sim_time = session_.simulation().state().time;
+  info.view = session_.scene().camera.View();
+  info.projection = session_.scene().camera.Projection();
+  const EncodedFrame frame = tiles_.Encode(image, info, threads);
+  for (const tile_t& tile : frame.tiles) paced_.Enqueue(channels_.tile, tile);
+  paced_.Enqueue(channels_.frame, frame.manifest);
+  stats_.render_seconds += rendered - start;
+  stats_.encode_seconds += MonotonicSeconds() - rendered;
+  ++stats_.frames_published;
+  stats_.tiles_published += frame.tiles.size();
+  stats_.tile_bytes += double(frame.encoded_bytes);
 }
 
 void Server::PublishParams() { bus_.Publish(channels_.params, MakeParamsMessage(session_.scene(), UnixMicros())); }

@@ -5,6 +5,9 @@
 //                        --fast: steps back to back
 //          publish       STATE every 1/state_rate of simulated time, and at once on REFRESH;
 //                        PARAMS each second and after a change; STATUS each second
+//          frame         every 1/frame_rate of simulated time: draw, pick and compress the
+//                        changed tiles, hand them to the paced publisher's thread; a frame due
+//                        while the last is still being sent is skipped, never queued
 //          wait          on the bus until the next step or publication is due
 #pragma once
 
@@ -14,9 +17,11 @@
 #include "bus.hpp"
 #include "channels.hpp"
 #include "command_intake.hpp"
+#include "paced_publisher.hpp"
 #include "scene.hpp"
 #include "server_stats.hpp"
 #include "session.hpp"
+#include "tile_stream.hpp"
 
 namespace flagsim {
 
@@ -47,6 +52,7 @@ class Server {
   void PublishState();
   void PublishParams();
   void PublishStatus(double now);
+  void FrameDue();
 
   Bus& bus_;
   const Channels& channels_;
@@ -54,11 +60,15 @@ class Server {
   Session session_;
   ServerStats stats_;
   CommandIntake intake_;
+  TileStream tiles_;
+  PacedPublisher paced_;
 
   double start_wall_ = -1;        ///< s, monotonic, first Tick
   double accumulator_ = 0;        ///< s of wall time owed to the simulation
   double last_tick_ = -1;
   double next_state_time_ = 0;    ///< s of simulated time when STATE is next due
+  double next_frame_time_ = 0;    ///< s of simulated time when a frame is next due
+  bool frame_due_ = true;
   double next_second_ = 0;        ///< s, monotonic, when PARAMS and STATUS are next due
   double window_sim_start_ = 0;   ///< simulated time at the last STATUS
   double window_wall_start_ = 0;  ///< wall time at the last STATUS

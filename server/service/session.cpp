@@ -5,7 +5,10 @@
 namespace flagsim {
 
 Session::Session(const Scene& scene)
-    : initial_(scene), scene_(scene), simulation_(scene.sim, scene.wind, scene.seed) {}
+    : initial_(scene),
+      scene_(scene),
+      simulation_(scene.sim, scene.wind, scene.seed),
+      render_scene_(render::DefaultRenderScene(float(scene.sim.pole_height))) {}
 
 std::string Session::ApplyWind(const sim::WindSettings& wind) {
   const std::string problem = ParameterTable::CheckWind(wind);
@@ -30,6 +33,9 @@ std::string Session::ApplyParams(const ParamChange& change) {
   if (problems.empty()) problems = ParameterTable::CheckConsistency(next);
   if (!problems.empty()) return problems;
 
+  if (next.sim.pole_height != scene_.sim.pole_height) {
+    render_scene_ = render::DefaultRenderScene(float(next.sim.pole_height));
+  }
   scene_ = next;
   simulation_.SetParams(scene_.sim);
   if (change.reset_to_scene) {
@@ -39,6 +45,27 @@ std::string Session::ApplyParams(const ParamChange& change) {
     simulation_.RestartFlag();
   }
   return "";
+}
+
+std::string Session::ApplyCamera(const render::CameraMove& move) {
+  if (move.operation == render::CameraMove::kReset) {
+    scene_.camera = initial_.camera;
+    return "";
+  }
+  return render::ApplyCameraMove(move, &scene_.camera);
+}
+
+// state => flag mesh => frame
+const render::Framebuffer& Session::RenderFrame(int threads) {
+  const auto& state = simulation_.state();
+  const auto& model = simulation_.model();
+  render::UpdateFlagMesh(model.cols, model.rows, state.x.data(), state.y.data(), state.z.data(),
+                         &render_scene_.meshes[0]);
+  render::RenderOptions options;
+  options.mode = scene_.service.shading;
+  options.threads = threads;
+  renderer_.Render(render_scene_, scene_.camera, options, &framebuffer_);
+  return framebuffer_;
 }
 
 }  // namespace flagsim

@@ -1,13 +1,15 @@
-// The running session: the scene as it stands now (parameters, wind), the scene it started
-// from, and the simulation. Commands arrive here already decoded; each is validated whole
-// before it touches anything, so a rejected command leaves the session exactly as it was.
-// No LCM here: the service's transport side is command_intake.hpp.
+// The running session: the scene as it stands now (parameters, wind, camera), the scene it
+// started from, the simulation, and the renderer that draws it. Commands arrive here already
+// decoded; each is validated whole before it touches anything, so a rejected command leaves
+// the session exactly as it was. No LCM here: the transport side is command_intake.hpp.
 #pragma once
 
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "render/camera_moves.hpp"
+#include "render/renderer.hpp"
 #include "scene.hpp"
 #include "sim/simulation.hpp"
 
@@ -30,7 +32,14 @@ class Session {
   /// Applies parameter assignments as one change; returns "" or every reason it was rejected.
   std::string ApplyParams(const ParamChange& change);
 
+  /// Applies a camera move (kReset: back to the scene's camera); "" or why it was rejected.
+  std::string ApplyCamera(const render::CameraMove& move);
+
   void Step() { simulation_.Step(); }
+
+  /// Draws the flag as it is now with the session's camera and shading, on `threads` threads.
+  const render::Framebuffer& RenderFrame(int threads);
+  const render::Framebuffer& frame() const { return framebuffer_; }
 
   const Scene& scene() const { return scene_; }
   const Scene& initial_scene() const { return initial_; }
@@ -42,6 +51,9 @@ class Session {
   Scene initial_;
   Scene scene_;
   FlagSimulation simulation_;
+  render::RenderScene render_scene_;
+  render::Renderer renderer_;
+  render::Framebuffer framebuffer_;
 };
 
 }  // namespace flagsim

@@ -1,0 +1,71 @@
+#include "tile_assembler.hpp"
+
+#include <xxhash.h>
+#include <zstd.h>
+
+#include <algorithm>
+
+namespace flagsim {
+
+void TileAssembler::Resize(int width, int height, int tile_size) {
+  width_ = width;
+  height_ = height;
+  tile_size_ = tile_size;
+  image_.assign(size_t(width) * height * 3, 0);
+  const int tiles = ((width + tile_size - 1) / tile_size) * ((height + tile_size - 1) / tile_size);
+  tile_frame_.assign(tiles, -1);
+}
+
+std::string TileAssembler::AddTile(const tile_t& tile) {
+  if (tile.x < 0 || tile.y < 0 || tile.width <= 0 || tile.height <= 0) return "tile of no size";
+  if (width_ == 0 || tile.x + tile.width > width_ || tile.y + tile.height > height_ || tile.x % tile_size_ != 0 ||
+      tile.y % tile_size_ != 0) {
+    if (waiting_.size() >= kMaxWaiting) waiting_.erase(waiting_.begin());
+    waiting_.push_back(tile);  // perhaps the first of a new size: its manifest will tell
+    return "";
+  }
+  const int tiles_x = (width_ + tile_size_ - 1) / tile_size_;
+  const int index = (tile.y / tile_size_) * tiles_x + tile.x / tile_size_;
+  if (tile.frame_id < tile_frame_[index]) return "";  // older than what we have: skip
+
+  const size_t size = size_t(tile.width) * tile.height * 3;
+  std::vector<uint8_t> pixels(size);
+  if (tile.encoding == tile_t::RAW_RGB8) {
+    if (tile.data.size() != size) return "raw tile of the wrong size";
+    pixels = tile.data;
+  } else if (tile.encoding == tile_t::ZSTD_RGB8) {
+    const size_t got = ZSTD_decompress(pixels.data(), size, tile.data.data(), tile.data.size());
+    if (ZSTD_isError(got) || got != size) return "tile does not decompress to its size";
+  } else {
+    return "unknown tile encoding " + std::to_string(tile.encoding);
+  }
+  if (static_cast<int64_t>(XXH3_64bits(pixels.data(), size)) != tile.pixel_hash) return "tile pixel hash mismatch";
+  for (int row = 0; row < tile.height; ++row) {
+    std::copy_n(&pixels[size_t(row) * tile.width * 3], size_t(tile.width) * 3,
+                &image_[(size_t(tile.y + row) * width_ + tile.x) * 3]);
+  }
+  tile_frame_[index] = tile.frame_id;
+  return "";
+}
+
+TileAssembler::FrameResult TileAssembler::AddManifest(const frame_t& manifest) {
+  if (manifest.width <= 0 || manifest.height <= 0 || manifest.width > kMaxWidth || manifest.height > kMaxHeight ||
+      manifest.tile_size <= 0 || manifest.tile_size > 4096) {
+    return FrameResult::kRefused;
+  }
+  if (manifest.width != width_ || manifest.height != height_ || manifest.tile_size != tile_size_) {
+    Resize(manifest.width, manifest.height, manifest.tile_size);
+    std::vector<tile_t> waiting;
+    waiting.swap(waiting_);
+    for (const tile_t& tile : waiting) {
+      if (tile.frame_id == manifest.frame_id) AddTile(tile);  // this frame's tiles came first
+    }
+  }
+  if (static_cast<int64_t>(XXH3_64bits(image_.data(), image_.size())) != manifest.frame_hash) {
+    return FrameResult::kIncomplete;
+  }
+  last_complete_frame_ = manifest.frame_id;
+  return FrameResult::kComplete;
+}
+
+}  // namespace flagsim

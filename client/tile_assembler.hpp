@@ -1,0 +1,49 @@
+// Turning the TILE and FRAME streams back into pictures. Tiles are decoded on arrival
+// (each on its own) and written into the image; a FRAME manifest then says which tiles its
+// frame sent and the hash of the whole image, so the assembler knows when its picture is
+// exactly the server's. Losses heal as tiles change, on the rolling refresh, or on a keyframe.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "flagsim/frame_t.hpp"
+#include "flagsim/tile_t.hpp"
+
+namespace flagsim {
+
+class TileAssembler {
+ public:
+  static constexpr int kMaxWidth = 8192, kMaxHeight = 8192;  ///< px: larger frames are refused
+  static constexpr size_t kMaxWaiting = 4096;                ///< tiles kept for an unknown size
+
+  /// Decodes `tile` into the image. Returns "" or why it was refused (undecodable, wrong size,
+  /// pixel hash mismatch): then the image is unchanged. Tiles that come before the first
+  /// manifest of their image size are kept until it arrives.
+  std::string AddTile(const tile_t& tile);
+
+  enum class FrameResult {
+    kComplete,    ///< the image now equals the server's frame, hash checked
+    kIncomplete,  ///< some tiles are missing or stale: wait for more, or ask for a keyframe
+    kRefused,     ///< the manifest makes no sense (size out of range)
+  };
+  /// Checks the image against a manifest (and adopts its size, if new).
+  FrameResult AddManifest(const frame_t& manifest);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const std::vector<uint8_t>& image() const { return image_; }  ///< RGB8, rows top to bottom
+  int64_t last_complete_frame() const { return last_complete_frame_; }
+
+ private:
+  void Resize(int width, int height, int tile_size);
+
+  int width_ = 0, height_ = 0, tile_size_ = 0;
+  std::vector<uint8_t> image_;
+  std::vector<int64_t> tile_frame_;  ///< per tile: the frame its pixels came from, -1 if none
+  std::vector<tile_t> waiting_;      ///< tiles that do not fit the image yet (a new size)
+  int64_t last_complete_frame_ = -1;
+};
+
+}  // namespace flagsim

@@ -1,0 +1,155 @@
+#include "tile_stream.hpp"
+
+#include <xxhash.h>
+#include <zstd.h>
+
+#include <algorithm>
+#include <memory>
+
+namespace flagsim {
+namespace {
+
+struct ZstdContextDeleter {
+  void operator()(ZSTD_CCtx* context) const { ZSTD_freeCCtx(context); }
+};
+
+/// tile_t with its pixels: zstd when that is smaller, else raw.
+tile_t EncodeTile(const std::vector<uint8_t>& pixels, ZSTD_CCtx* context) {
+  tile_t tile{};
+  std::vector<uint8_t> compressed(ZSTD_compressBound(pixels.size()));
+  const size_t size = ZSTD_compressCCtx(context, compressed.data(), compressed.size(), pixels.data(), pixels.size(),
+                                        TileStream::kCompressionLevel);
+  if (!ZSTD_isError(size) && size < pixels.size()) {
+    compressed.resize(size);
+    tile.encoding = tile_t::ZSTD_RGB8;
+    tile.data = std::move(compressed);
+  } else {
+    tile.encoding = tile_t::RAW_RGB8;
+    tile.data = pixels;
+  }
+  tile.num_bytes = static_cast<int32_t>(tile.data.size());
+  return tile;
+}
+
+/// XXH3-64 of the tile's rows, as if they were copied out back to back.
+uint64_t TileHash(const render::Framebuffer& image, const TileBox& box, XXH3_state_t* hasher) {
+  XXH3_64bits_reset(hasher);
+  for (int row = 0; row < box.height; ++row) {
+    XXH3_64bits_update(hasher, image.Pixel(box.x, box.y + row), size_t(box.width) * 3);
+  }
+  return XXH3_64bits_digest(hasher);
+}
+
+}  // namespace
+
+TileBox TileStream::TileRect(int t) const {
+  TileBox box;
+  box.x = (t % tiles_x_) * tile_size_;
+  box.y = (t / tiles_x_) * tile_size_;
+  box.width = std::min(tile_size_, width_ - box.x);
+  box.height = std::min(tile_size_, height_ - box.y);
+  return box;
+}
+
+int64_t ImageHash(const uint8_t* data, size_t size) { return static_cast<int64_t>(XXH3_64bits(data, size)); }
+
+std::vector<uint8_t> TilePixels(const render::Framebuffer& image, int x, int y, int width, int height) {
+  std::vector<uint8_t> pixels(size_t(width) * height * 3);
+  for (int row = 0; row < height; ++row) {
+    const uint8_t* source = image.Pixel(x, y + row);
+    std::copy(source, source + size_t(width) * 3, pixels.begin() + size_t(row) * width * 3);
+  }
+  return pixels;
+}
+
+void TileStream::RequestKeyframe(int64_t request_id) {
+  keyframe_requested_ = true;
+  request_id_ = request_id;
+}
+
+// image => per-tile hashes => the tiles to send (changed, keyframe, rolling) => compressed => manifest
+EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInfo& info, int threads) {
+  if (image.width != width_ || image.height != height_) {  // a new size: start afresh
+    width_ = image.width;
+    height_ = image.height;
+    tiles_x_ = (width_ + tile_size_ - 1) / tile_size_;
+    tiles_y_ = (height_ + tile_size_ - 1) / tile_size_;
+    sent_hash_.assign(size_t(tiles_x_) * tiles_y_, 0);
+    ever_sent_.assign(sent_hash_.size(), false);
+    rolling_next_ = 0;
+  }
+  const int tiles = tiles_x_ * tiles_y_;
+  const bool keyframe = keyframe_requested_ || frames_since_keyframe_ >= kKeyframeInterval ||
+                        std::find(ever_sent_.begin(), ever_sent_.end(), false) != ever_sent_.end();
+
+  // Hash every tile where it lies; pick those to send.
+  std::vector<uint64_t> hashes(tiles);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> hasher(XXH3_createState(),
+                                                                                 XXH3_freeState);
+#pragma omp for schedule(static)
+    for (int t = 0; t < tiles; ++t) hashes[t] = TileHash(image, TileRect(t), hasher.get());
+  }
+  std::vector<int32_t> chosen;
+  for (int t = 0; t < tiles; ++t) {
+    const bool rolling = (size_t(t) + tiles - rolling_next_) % tiles < size_t(kRollingRefresh);
+    if (keyframe || rolling || hashes[t] != sent_hash_[t]) chosen.push_back(t);
+  }
+  rolling_next_ = (rolling_next_ + kRollingRefresh) % tiles;
+
+  EncodedFrame frame;
+  frame.tiles.resize(chosen.size());
+  const int count = static_cast<int>(chosen.size());
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const std::unique_ptr<ZSTD_CCtx, ZstdContextDeleter> context(ZSTD_createCCtx());
+#pragma omp for schedule(dynamic)
+    for (int i = 0; i < count; ++i) {
+      const int t = chosen[i];
+      const TileBox box = TileRect(t);
+      tile_t& tile = frame.tiles[i];
+      tile = EncodeTile(TilePixels(image, box.x, box.y, box.width, box.height), context.get());
+      tile.utime = info.utime;
+      tile.frame_id = next_frame_id_;
+      tile.tile_index = t;
+      tile.x = static_cast<int16_t>(box.x);
+      tile.y = static_cast<int16_t>(box.y);
+      tile.width = static_cast<int16_t>(box.width);
+      tile.height = static_cast<int16_t>(box.height);
+      tile.pixel_hash = static_cast<int64_t>(hashes[t]);
+    }
+  }
+  for (const int32_t t : chosen) {
+    sent_hash_[t] = hashes[t];
+    ever_sent_[t] = true;
+  }
+  for (const tile_t& tile : frame.tiles) frame.encoded_bytes += tile.data.size();
+
+  frame_t& manifest = frame.manifest;
+  manifest.utime = info.utime;
+  manifest.frame_id = next_frame_id_++;
+  manifest.step = info.step;
+  manifest.sim_time = info.sim_time;
+  manifest.width = width_;
+  manifest.height = height_;
+  manifest.tile_size = tile_size_;
+  manifest.keyframe = keyframe;
+  manifest.request_id = keyframe && keyframe_requested_ ? request_id_ : -1;
+  manifest.frame_hash = ImageHash(image.rgb.data(), image.rgb.size());
+  manifest.tile_indices = std::move(chosen);
+  manifest.num_tiles = static_cast<int32_t>(manifest.tile_indices.size());
+  for (int k = 0; k < 16; ++k) {
+    manifest.view[k] = info.view.data()[k];  // Eigen is column-major, as the message says
+    manifest.projection[k] = info.projection.data()[k];
+  }
+  if (keyframe) {
+    keyframe_requested_ = false;
+    frames_since_keyframe_ = 0;
+  } else {
+    ++frames_since_keyframe_;
+  }
+  return frame;
+}
+
+}  // namespace flagsim

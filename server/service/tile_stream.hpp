@@ -1,0 +1,82 @@
+// The frame stream: each frame is cut into square tiles; the tiles whose pixels changed since
+// they were last sent are compressed one by one (zstd, or raw when that is smaller) and sent,
+// then a FRAME manifest that lists them and hashes the whole image.
+//
+//   keyframe         every tile: on request (REFRESH, coalesced), after a resize, and
+//                    every kKeyframeInterval frames
+//   rolling refresh  a few tiles each frame whether changed or not, round the image, so a
+//                    client that lost tiles converges even if all its requests are lost
+//
+// Every tile decodes on its own (no state shared between messages), so losing one loses
+// that tile only, until it changes or the rolling refresh comes round.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "flagsim/frame_t.hpp"
+#include "flagsim/tile_t.hpp"
+#include "render/framebuffer.hpp"
+
+namespace flagsim {
+
+struct FrameInfo {
+  int64_t utime = 0;
+  int64_t step = 0;
+  double sim_time = 0;
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d projection = Eigen::Matrix4d::Identity();
+};
+
+/// A tile's place in the image, px.
+struct TileBox {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+/// One frame's messages, in publishing order: tiles, then the manifest.
+struct EncodedFrame {
+  std::vector<tile_t> tiles;
+  frame_t manifest;
+  size_t encoded_bytes = 0;  ///< tile payloads, compressed
+};
+
+class TileStream {
+ public:
+  static constexpr int kKeyframeInterval = 300;  ///< frames (10 s at 30 Hz)
+  static constexpr int kRollingRefresh = 2;      ///< tiles per frame
+  static constexpr int kCompressionLevel = 1;    ///< zstd: fast
+
+  explicit TileStream(int tile_size = 64) : tile_size_(tile_size) {}
+
+  /// Makes the next frame a keyframe answering `request_id` (the latest one, if several).
+  void RequestKeyframe(int64_t request_id);
+
+  /// The messages for `image`. Hashing and compression run on `threads` threads; the result
+  /// does not depend on how many.
+  EncodedFrame Encode(const render::Framebuffer& image, const FrameInfo& info, int threads);
+
+  int tile_size() const { return tile_size_; }
+  int64_t frames() const { return next_frame_id_; }
+
+ private:
+  TileBox TileRect(int tile_index) const;
+
+  int tile_size_;
+  int width_ = 0, height_ = 0, tiles_x_ = 0, tiles_y_ = 0;
+  std::vector<uint64_t> sent_hash_;  ///< per tile: the pixel hash last sent
+  std::vector<bool> ever_sent_;
+  int64_t next_frame_id_ = 0;
+  int64_t frames_since_keyframe_ = 0;
+  size_t rolling_next_ = 0;
+  bool keyframe_requested_ = false;
+  int64_t request_id_ = -1;
+};
+
+/// A tile's pixels as RGB8 rows, width * 3 bytes each, copied out of the image.
+std::vector<uint8_t> TilePixels(const render::Framebuffer& image, int x, int y, int width, int height);
+
+/// XXH3-64 of bytes, as the messages carry it.
+int64_t ImageHash(const uint8_t* data, size_t size);
+
+}  // namespace flagsim
