@@ -18,10 +18,20 @@ void TileAssembler::Resize(int width, int height, int tile_size) {
 
 std::string TileAssembler::AddTile(const tile_t& tile) {
   if (tile.x < 0 || tile.y < 0 || tile.width <= 0 || tile.height <= 0) return "tile of no size";
-  if (width_ == 0 || tile.x + tile.width > width_ || tile.y + tile.height > height_ || tile.x % tile_size_ != 0 ||
-      tile.y % tile_size_ != 0) {
-    if (waiting_.size() >= kMaxWaiting) waiting_.erase(waiting_.begin());
-    waiting_.push_back(tile);  // perhaps the first of a new size: its manifest will tell
+  if (tile.frame_id > latest_frame_) {
+    latest_.clear();
+    latest_frame_ = tile.frame_id;
+  }
+  if (tile.frame_id == latest_frame_ && latest_.size() < kMaxKept) latest_.push_back(tile);
+  return Place(tile);
+}
+
+// A tile that does not fit the current grid exactly may belong to a new size: it stays in
+// latest_ until the manifest says.
+std::string TileAssembler::Place(const tile_t& tile) {
+  if (width_ == 0 || tile.x % tile_size_ != 0 || tile.y % tile_size_ != 0 || tile.x >= width_ ||
+      tile.y >= height_ || tile.width != std::min(tile_size_, width_ - tile.x) ||
+      tile.height != std::min(tile_size_, height_ - tile.y)) {
     return "";
   }
   const int tiles_x = (width_ + tile_size_ - 1) / tile_size_;
@@ -55,10 +65,8 @@ TileAssembler::FrameResult TileAssembler::AddManifest(const frame_t& manifest) {
   }
   if (manifest.width != width_ || manifest.height != height_ || manifest.tile_size != tile_size_) {
     Resize(manifest.width, manifest.height, manifest.tile_size);
-    std::vector<tile_t> waiting;
-    waiting.swap(waiting_);
-    for (const tile_t& tile : waiting) {
-      if (tile.frame_id == manifest.frame_id) AddTile(tile);  // this frame's tiles came first
+    for (const tile_t& tile : latest_) {
+      if (tile.frame_id == manifest.frame_id) Place(tile);  // this frame's tiles came first
     }
   }
   if (static_cast<int64_t>(XXH3_64bits(image_.data(), image_.size())) != manifest.frame_hash) {

@@ -16,11 +16,11 @@ namespace flagsim {
 class TileAssembler {
  public:
   static constexpr int kMaxWidth = 8192, kMaxHeight = 8192;  ///< px: larger frames are refused
-  static constexpr size_t kMaxWaiting = 4096;                ///< tiles kept for an unknown size
+  static constexpr size_t kMaxKept = 8192;                   ///< tiles kept of the latest frame
 
   /// Decodes `tile` into the image. Returns "" or why it was refused (undecodable, wrong size,
-  /// pixel hash mismatch): then the image is unchanged. Tiles that come before the first
-  /// manifest of their image size are kept until it arrives.
+  /// pixel hash mismatch): then the image is unchanged. The latest frame's tiles are also
+  /// kept until its manifest comes, which may bring a new image size they belong to.
   std::string AddTile(const tile_t& tile);
 
   enum class FrameResult {
@@ -38,11 +38,13 @@ class TileAssembler {
 
  private:
   void Resize(int width, int height, int tile_size);
+  std::string Place(const tile_t& tile);
 
   int width_ = 0, height_ = 0, tile_size_ = 0;
   std::vector<uint8_t> image_;
   std::vector<int64_t> tile_frame_;  ///< per tile: the frame its pixels came from, -1 if none
-  std::vector<tile_t> waiting_;      ///< tiles that do not fit the image yet (a new size)
+  std::vector<tile_t> latest_;       ///< the tiles of the newest frame seen
+  int64_t latest_frame_ = -1;
   int64_t last_complete_frame_ = -1;
 };
 

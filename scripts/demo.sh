@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job on its embedded defaults: installs what is missing, builds, starts flagd on the
-# default scene, and drives it with a short flagctl session that leaves a log in out/.
-#   scripts/demo.sh            (out/session.lcmlog, out/params.txt, out/status.txt)
+# default scene, and drives it with a short flagctl session that leaves a picture and a log.
+#   scripts/demo.sh   -> out/flag.png, out/flag-orbit.png, out/session.lcmlog, out/params.txt, out/status.txt
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -25,6 +25,9 @@ session() {
   "$flagctl" set stiffness=3000 damping=0.08
   "$flagctl" watch --duration 3
   wait $recorder
+  "$flagctl" --timeout 5 snapshot -o out/flag.png
+  "$flagctl" camera orbit -35 8
+  "$flagctl" --timeout 5 snapshot -o out/flag-orbit.png
   "$flagctl" params >out/params.txt
   "$flagctl" status | tee out/status.txt
   kill -TERM $demo_server

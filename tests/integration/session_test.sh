@@ -81,12 +81,27 @@ expect 0 "refresh gets a full state" "$flagctl" --prefix $prefix refresh
 contains "32 x 24 nodes" "  of the whole flag"
 expect 4 "no answer on another prefix" "$flagctl" --prefix NOBODY_ --timeout 1 status
 
+echo "-- frames"
+expect 0 "snapshot writes a hash-checked frame" "$flagctl" --prefix $prefix --timeout 5 snapshot -o "$work/frame.png"
+contains "1280 x 720" "  at the default size"
+if [[ $(head -c 8 "$work/frame.png" | od -An -tx1 | tr -d ' ') == 89504e470d0a1a0a ]]; then
+  passes=$((passes + 1)); echo "ok      and it is a PNG"
+else failures=$((failures + 1)); echo "FAIL    $work/frame.png is not a PNG"; fi
+expect 0 "camera orbit accepted" "$flagctl" --prefix $prefix camera orbit 20 5
+expect 0 "camera size accepted" "$flagctl" --prefix $prefix camera size 320 180
+expect 3 "camera size too large rejected" "$flagctl" --prefix $prefix camera size 9000 100
+contains "width: 9000 is out of range" "  with the field named"
+expect 0 "snapshot follows the new size" "$flagctl" --prefix $prefix --timeout 5 snapshot -o "$work/small.png"
+contains "320 x 180" "  at 320 x 180"
+expect 0 "watch reports frames" "$flagctl" --prefix $prefix watch --duration 2.5
+contains "FRAME" "  with their rate"
+
 echo "-- hostile bytes"
 expect 0 "spray garbage on every command channel" "$spray" "$LCM_DEFAULT_URL" 40 \
   ${prefix}WIND ${prefix}PARAM ${prefix}REFRESH ${prefix}CAMERA ${prefix}KEYFRAME
 sleep 1.5  # a STATUS goes out each second
 expect 0 "the server still answers" "$flagctl" --prefix $prefix status
-contains "120 undecodable dropped" "  and counted what it dropped"
+contains "160 undecodable dropped" "  and counted what it dropped (KEYFRAME has no listener yet)"
 expect 0 "and still takes commands" "$flagctl" --prefix $prefix wind 5 0 1
 
 echo "-- recording"

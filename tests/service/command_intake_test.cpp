@@ -154,7 +154,7 @@ TEST_F(CommandIntakeTest, HostileBytesOnEveryCommandChannelAreCountedAndDropped)
   }
   const auto before = Values();
   int64_t sent = 0;
-  for (const std::string& channel : {channels_.wind, channels_.param, channels_.refresh}) {
+  for (const std::string& channel : {channels_.wind, channels_.param, channels_.refresh, channels_.camera}) {
     for (const auto& bytes : hostile) {
       bus_.Publish(channel, bytes.data(), bytes.size());
       bus_.HandleAll();
@@ -166,6 +166,31 @@ TEST_F(CommandIntakeTest, HostileBytesOnEveryCommandChannelAreCountedAndDropped)
   EXPECT_EQ(Values(), before);
   // And the server still answers.
   EXPECT_EQ(client_.Send(channels_.wind, testing::SomeWindCommand()).result, CommandOutcome::kAccepted);
+}
+
+TEST_F(CommandIntakeTest, CameraMovesAreValidatedAndApplied) {
+  camera_command_t command{};
+  command.operation = camera_command_t::ORBIT;
+  command.angle = 0.5;
+  const Eigen::Vector3d eye = server_.session().scene().camera.eye;
+  EXPECT_EQ(client_.Send(channels_.camera, command).result, CommandOutcome::kAccepted);
+  EXPECT_NE(server_.session().scene().camera.eye, eye);
+
+  const Eigen::Vector3d moved = server_.session().scene().camera.eye;
+  command.angle = std::numeric_limits<double>::quiet_NaN();
+  const CommandOutcome outcome = client_.Send(channels_.camera, command);
+  EXPECT_EQ(outcome.result, CommandOutcome::kRejected);
+  EXPECT_EQ(outcome.reason.rfind("angle:", 0), 0u) << outcome.reason;
+  EXPECT_EQ(server_.session().scene().camera.eye, moved);
+
+  camera_command_t reset{};
+  reset.operation = camera_command_t::RESET;
+  EXPECT_EQ(client_.Send(channels_.camera, reset).result, CommandOutcome::kAccepted);
+  EXPECT_EQ(server_.session().scene().camera.eye, eye);
+}
+
+TEST_F(CommandIntakeTest, RefreshRequestsAreAcknowledged) {
+  EXPECT_EQ(client_.Send(channels_.refresh, refresh_request_t{}).result, CommandOutcome::kAccepted);
 }
 
 }  // namespace

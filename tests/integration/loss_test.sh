@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Under datagram loss (ctest runs this through scripts/netns-run --loss 10): commands are retried
+# until answered, and a client assembles a complete, hash-checked frame within a bounded time.
+# Usage: loss_test.sh BUILD_DIR
+set -euo pipefail
+build=$1
+export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
+work=$(mktemp -d)
+"$build/server/flagd" --log-level warn >"$work/flagd.log" 2>&1 &
+server=$!
+trap 'kill $server 2>/dev/null || true; rm -rf "$work"' EXIT
+
+failures=0
+passes=0
+check() {  # check DESCRIPTION COMMAND...: exit 0 expected
+  local what=$1
+  shift
+  if "$@" >"$work/out" 2>&1; then passes=$((passes + 1)); echo "ok    $what"
+  else failures=$((failures + 1)); echo "FAIL  $what"; sed 's/^/      /' "$work/out"; fi
+}
+sleep 1
+for i in 1 2 3; do
+  check "command $i answered despite loss" "$build/client/flagctl" --timeout 5 wind $((4 + i)) 0 1
+done
+for i in 1 2 3; do
+  start=$(date +%s%N)
+  check "snapshot $i complete within 15 s despite loss" "$build/client/flagctl" --timeout 15 snapshot -o "$work/frame.png"
+  echo "      took $(( ($(date +%s%N) - start) / 1000000 )) ms"
+done
+echo "$passes passed, $failures failed"
+((failures == 0))
