@@ -1,6 +1,7 @@
 #include "tile_raster.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 namespace flagsim::render {
 namespace {
@@ -10,33 +11,99 @@ uint8_t ToByte(float value) {
   return scaled <= 0 ? 0 : scaled >= 255 ? 255 : static_cast<uint8_t>(scaled);
 }
 
-/// The base colour at (u, v): the pattern's texel times the material's colour, or the colour.
-Eigen::Vector3f BaseColour(const Material& material, const Texture& pattern, float u, float v) {
-  if (!material.patterned) return material.colour;
-  const uint8_t* texel = pattern.Sample(u, v);
-  return material.colour.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) * (1.0f / 255));
-}
+/// A plane's value along one row: at + step * (x - min_x).
+struct RowPlane {
+  float at, step;
+};
 
-/// Interpolated channels at pixel (x, y): perspective-correct, channel = (channel / w) / (1 / w).
-void Interpolate(const TriangleSetup& t, float fx, float fy, float out[kPlaneChannels]) {
-  const float w = 1.0f / (t.inverse_w.origin + t.inverse_w.dx * fx + t.inverse_w.dy * fy);
-  for (int k = 0; k < kPlaneChannels; ++k) {
-    const Plane& p = t.channels[k];
-    out[k] = (p.origin + p.dx * fx + p.dy * fy) * w;
+RowPlane AlongRow(const Plane& plane, float fy) { return RowPlane{plane.origin + plane.dy * fy, plane.dx}; }
+
+/// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
+/// base the material's colour, times the pattern's texel at (u, v) (channels 6, 7) when
+/// `kPatterned`. Perspective-correct: each channel is (channel / w) / (1 / w).
+/// Three passes over the span, the first two free of branches so that they vectorise: the depth
+/// test (keeping a mask), the colours of every pixel, then the stores where the mask is set.
+template <bool kPatterned>
+void FillSpanInterpolated(const TriangleSetup& t, const Material& material, const Texture& pattern, float fy,
+                          int first, int last, float* __restrict depth, uint8_t* __restrict rgb) {
+  constexpr int kMaxSpan = 4096;
+  constexpr int kChannels = kPatterned ? 8 : 6;
+  const int n = last - first + 1;
+  const float fx0 = float(first - t.min_x);
+  alignas(32) uint8_t visible[kMaxSpan];
+  alignas(32) float red[kMaxSpan], green[kMaxSpan], blue[kMaxSpan];
+  int any = 0;
+  {
+    const RowPlane z = AlongRow(t.depth, fy);
+    float* __restrict d = depth + first;
+    for (int i = 0; i < n; ++i) {
+      const float here = z.at + z.step * (fx0 + float(i));
+      const bool nearer = here < d[i];
+      d[i] = nearer ? here : d[i];
+      visible[i] = nearer;
+      any |= nearer;
+    }
+  }
+  if (!any) return;
+  const RowPlane inverse_w = AlongRow(t.inverse_w, fy);
+  RowPlane channel[kChannels];
+  for (int k = 0; k < kChannels; ++k) channel[k] = AlongRow(t.channels[k], fy);
+  const float r0 = material.colour[0], g0 = material.colour[1], b0 = material.colour[2];
+  for (int i = 0; i < n; ++i) {
+    const float fx = fx0 + float(i);
+    const float w = 1.0f / (inverse_w.at + inverse_w.step * fx);
+    float c[kChannels];
+    for (int k = 0; k < kChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
+    float r = r0, g = g0, b = b0;
+    if constexpr (kPatterned) {
+      const uint8_t* texel = pattern.Sample(c[6], c[7]);
+      r *= texel[0] * (1.0f / 255);
+      g *= texel[1] * (1.0f / 255);
+      b *= texel[2] * (1.0f / 255);
+    }
+    red[i] = r * c[0] + c[3];
+    green[i] = g * c[1] + c[4];
+    blue[i] = b * c[2] + c[5];
+  }
+  uint8_t* pixel = rgb + 3 * first;
+  for (int i = 0; i < n; ++i, pixel += 3) {
+    if (!visible[i]) continue;
+    pixel[0] = ToByte(red[i]);
+    pixel[1] = ToByte(green[i]);
+    pixel[2] = ToByte(blue[i]);
   }
 }
 
-Eigen::Vector3f ShadePixel(const TriangleSetup& t, const ShadeContext& context, const float c[kPlaneChannels]) {
+/// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel.
+void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy, int first, int last,
+                   float* depth, uint8_t* rgb) {
   const RenderScene& scene = *context.scene;
   const Material& material = scene.materials[t.material];
-  const Eigen::Vector3f base = BaseColour(material, scene.pattern, c[6], c[7]);
-  if (context.mode != ShadingMode::kPhong) {
-    return base.cwiseProduct(Eigen::Vector3f(c[0], c[1], c[2])) + Eigen::Vector3f(c[3], c[4], c[5]);
+  const RowPlane z = AlongRow(t.depth, fy), inverse_w = AlongRow(t.inverse_w, fy);
+  RowPlane channel[kPlaneChannels];
+  for (int k = 0; k < kPlaneChannels; ++k) channel[k] = AlongRow(t.channels[k], fy);
+  for (int x = first; x <= last; ++x) {
+    const float fx = float(x - t.min_x);
+    const float depth_here = z.at + z.step * fx;
+    if (!(depth_here < depth[x])) continue;
+    depth[x] = depth_here;
+    const float w = 1.0f / (inverse_w.at + inverse_w.step * fx);
+    float c[kPlaneChannels];
+    for (int k = 0; k < kPlaneChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
+    Eigen::Vector3f normal = Eigen::Vector3f(c[3], c[4], c[5]).normalized();
+    if (t.back_facing) normal = -normal;
+    const Shade shade = ShadePoint(material, scene.lighting, Eigen::Vector3f(c[0], c[1], c[2]), normal, context.eye);
+    Eigen::Vector3f base = material.colour;
+    if (material.patterned) {
+      const uint8_t* texel = scene.pattern.Sample(c[6], c[7]);
+      base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) * (1.0f / 255));
+    }
+    const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
+    uint8_t* pixel = rgb + 3 * x;
+    pixel[0] = ToByte(colour[0]);
+    pixel[1] = ToByte(colour[1]);
+    pixel[2] = ToByte(colour[2]);
   }
-  Eigen::Vector3f normal = Eigen::Vector3f(c[3], c[4], c[5]).normalized();
-  if (t.back_facing) normal = -normal;
-  const Shade shade = ShadePoint(material, scene.lighting, Eigen::Vector3f(c[0], c[1], c[2]), normal, context.eye);
-  return base.cwiseProduct(shade.diffuse) + shade.specular;
 }
 
 }  // namespace
@@ -45,35 +112,36 @@ void ClearTile(const TileRect& tile, const RenderScene& scene, Framebuffer* fram
   for (int y = tile.y0; y < tile.y1; ++y) {
     const float t = framebuffer->height > 1 ? float(y) / (framebuffer->height - 1) : 0.0f;
     const Eigen::Vector3f sky = scene.sky_top + t * (scene.sky_horizon - scene.sky_top);
-    const uint8_t rgb[3] = {ToByte(sky[0]), ToByte(sky[1]), ToByte(sky[2])};
-    uint8_t* pixel = framebuffer->Pixel(tile.x0, y);
-    for (int x = tile.x0; x < tile.x1; ++x, pixel += 3) std::copy(rgb, rgb + 3, pixel);
+    uint8_t* row = framebuffer->Pixel(tile.x0, y);
+    row[0] = ToByte(sky[0]);
+    row[1] = ToByte(sky[1]);
+    row[2] = ToByte(sky[2]);
+    // Doubling copies: the first pixel, then 1, 2, 4, ... pixels of what is already there.
+    const size_t bytes = size_t(tile.x1 - tile.x0) * 3;
+    for (size_t done = 3; done < bytes; done *= 2) std::memcpy(row + done, row, std::min(done, bytes - done));
     std::fill_n(&framebuffer->depth[size_t(y) * framebuffer->width + tile.x0], tile.x1 - tile.x0, 1.0f);
   }
 }
 
 void RasterizeTriangle(const TriangleSetup& t, const TileRect& tile, const ShadeContext& context,
                        Framebuffer* framebuffer) {
+  const Material& material = context.scene->materials[t.material];
   const int y_first = std::max(t.min_y, tile.y0), y_last = std::min(t.max_y, tile.y1 - 1);
   for (int y = y_first; y <= y_last; ++y) {
     int first = 0, last = 0;
     if (!RowSpan(t, y, &first, &last)) continue;
     first = std::max(first, tile.x0);
     last = std::min(last, tile.x1 - 1);
+    if (first > last) continue;
     const float fy = float(y - t.min_y);
     float* depth = &framebuffer->depth[size_t(y) * framebuffer->width];
-    for (int x = first; x <= last; ++x) {
-      const float fx = float(x - t.min_x);
-      const float z = t.depth.origin + t.depth.dx * fx + t.depth.dy * fy;
-      if (!(z < depth[x])) continue;
-      depth[x] = z;
-      float channels[kPlaneChannels];
-      Interpolate(t, fx, fy, channels);
-      const Eigen::Vector3f colour = ShadePixel(t, context, channels);
-      uint8_t* pixel = framebuffer->Pixel(x, y);
-      pixel[0] = ToByte(colour[0]);
-      pixel[1] = ToByte(colour[1]);
-      pixel[2] = ToByte(colour[2]);
+    uint8_t* rgb = framebuffer->Pixel(0, y);
+    if (context.mode == ShadingMode::kPhong) {
+      FillSpanPhong(t, context, fy, first, last, depth, rgb);
+    } else if (material.patterned) {
+      FillSpanInterpolated<true>(t, material, context.scene->pattern, fy, first, last, depth, rgb);
+    } else {
+      FillSpanInterpolated<false>(t, material, context.scene->pattern, fy, first, last, depth, rgb);
     }
   }
 }
