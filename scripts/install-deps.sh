@@ -3,6 +3,7 @@
 # Idempotent and non-interactive: installs only what is missing.
 #   scripts/install-deps.sh          build, test and run
 #   scripts/install-deps.sh --java   also a JDK, for the lcm-spy types jar
+#   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL, for the llvmpipe comparison
 set -euo pipefail
 
 packages=(
@@ -17,7 +18,13 @@ packages=(
   libgtest-dev libbenchmark-dev                  # tests and benchmarks
   iproute2 nftables util-linux                   # private network namespaces for the udpm tests
 )
-if [[ ${1:-} == --java ]]; then packages+=(default-jdk-headless); fi
+for option in "$@"; do
+  case $option in
+    --java) packages+=(default-jdk-headless) ;;
+    --bench) packages+=(libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri) ;;
+    *) echo "install-deps: unknown option $option (known: --java, --bench)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for package in "${packages[@]}"; do
