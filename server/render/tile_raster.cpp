@@ -112,13 +112,14 @@ void ClearTile(const TileRect& tile, const RenderScene& scene, Framebuffer* fram
   for (int y = tile.y0; y < tile.y1; ++y) {
     const float t = framebuffer->height > 1 ? float(y) / (framebuffer->height - 1) : 0.0f;
     const Eigen::Vector3f sky = scene.sky_top + t * (scene.sky_horizon - scene.sky_top);
+    // Four pixels are 12 bytes: copy that block along the row, then the last few pixels.
+    uint8_t block[12];
+    for (int k = 0; k < 12; ++k) block[k] = ToByte(sky[k % 3]);
     uint8_t* row = framebuffer->Pixel(tile.x0, y);
-    row[0] = ToByte(sky[0]);
-    row[1] = ToByte(sky[1]);
-    row[2] = ToByte(sky[2]);
-    // Doubling copies: the first pixel, then 1, 2, 4, ... pixels of what is already there.
-    const size_t bytes = size_t(tile.x1 - tile.x0) * 3;
-    for (size_t done = 3; done < bytes; done *= 2) std::memcpy(row + done, row, std::min(done, bytes - done));
+    const int pixels = tile.x1 - tile.x0;
+    int x = 0;
+    for (; x + 4 <= pixels; x += 4) std::memcpy(row + 3 * x, block, sizeof(block));
+    for (; x < pixels; ++x) std::memcpy(row + 3 * x, block, 3);
     std::fill_n(&framebuffer->depth[size_t(y) * framebuffer->width + tile.x0], tile.x1 - tile.x0, 1.0f);
   }
 }
@@ -127,9 +128,11 @@ void RasterizeTriangle(const TriangleSetup& t, const TileRect& tile, const Shade
                        Framebuffer* framebuffer) {
   const Material& material = context.scene->materials[t.material];
   const int y_first = std::max(t.min_y, tile.y0), y_last = std::min(t.max_y, tile.y1 - 1);
-  for (int y = y_first; y <= y_last; ++y) {
+  if (y_first > y_last) return;
+  RowSpans spans(t, y_first);
+  for (int y = y_first; y <= y_last; ++y, spans.NextRow()) {
     int first = 0, last = 0;
-    if (!RowSpan(t, y, &first, &last)) continue;
+    if (!spans.Span(&first, &last)) continue;
     first = std::max(first, tile.x0);
     last = std::min(last, tile.x1 - 1);
     if (first > last) continue;

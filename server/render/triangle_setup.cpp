@@ -91,6 +91,58 @@ bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVer
   return true;
 }
 
+RowSpans::RowSpans(const TriangleSetup& setup, int y) : min_x_(setup.min_x), max_x_(setup.max_x) {
+  const int64_t py = int64_t(y) * kSubpixels + kSubpixels / 2;
+  for (int i = 0; i < 3; ++i) {
+    // As in RowSpan: inside when K + bias >= m px, K growing by dx * kSubpixels a row.
+    const int64_t dy = setup.edge_dy[i];
+    const int64_t k = setup.edge_dx[i] * (py - setup.edge_y[i]) + dy * (setup.edge_x[i] - kSubpixels / 2) +
+                      setup.edge_bias[i];
+    const int64_t growth = setup.edge_dx[i] * kSubpixels;
+    Edge& edge = edges_[i];
+    const int64_t m = dy * kSubpixels;
+    edge.sign = m > 0 ? 1 : m < 0 ? -1 : 0;
+    if (edge.sign == 0) {
+      edge.quotient = k;
+      edge.step_quotient = growth;
+      continue;
+    }
+    edge.divisor = m > 0 ? m : -m;
+    edge.quotient = FloorDiv(k, edge.divisor);
+    edge.remainder = k - edge.quotient * edge.divisor;
+    edge.step_quotient = FloorDiv(growth, edge.divisor);
+    edge.step_remainder = growth - edge.step_quotient * edge.divisor;
+  }
+}
+
+bool RowSpans::Span(int* first, int* last) const {
+  int64_t low = min_x_, high = max_x_;
+  for (const Edge& edge : edges_) {
+    if (edge.sign > 0) {
+      high = std::min(high, edge.quotient);      // px <= floor(K / m)
+    } else if (edge.sign < 0) {
+      low = std::max(low, -edge.quotient);       // px >= -floor(K / |m|)
+    } else if (edge.quotient < 0) {
+      return false;                              // a horizontal edge with the row outside
+    }
+  }
+  *first = int(low);
+  *last = int(high);
+  return low <= high;
+}
+
+void RowSpans::NextRow() {
+  for (Edge& edge : edges_) {
+    edge.quotient += edge.step_quotient;
+    if (edge.sign == 0) continue;
+    edge.remainder += edge.step_remainder;
+    if (edge.remainder >= edge.divisor) {
+      edge.remainder -= edge.divisor;
+      ++edge.quotient;
+    }
+  }
+}
+
 bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last) {
   int64_t low = setup.min_x, high = setup.max_x;
   const int64_t py = int64_t(y) * kSubpixels + kSubpixels / 2;

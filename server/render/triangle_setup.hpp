@@ -54,4 +54,23 @@ bool IsBackFacing(const ScreenVertex& a, const ScreenVertex& b, const ScreenVert
 /// The covered pixels of row y: [*first, *last] within [min_x, max_x]; false if none.
 bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last);
 
+/// The same spans row after row, with no division per row: each edge's bound floor(K / m)
+/// is carried as quotient and remainder, and K grows by the same amount every row.
+class RowSpans {
+ public:
+  RowSpans(const TriangleSetup& setup, int y);  ///< positioned at row y
+  bool Span(int* first, int* last) const;       ///< this row's covered pixels; false if none
+  void NextRow();
+
+ private:
+  struct Edge {
+    int64_t quotient = 0, remainder = 0;  ///< floor(K / |m|) and K mod |m| (m != 0); K itself (m == 0)
+    int64_t step_quotient = 0, step_remainder = 0;  ///< the same for K's growth per row
+    int64_t divisor = 0;                            ///< |m|
+    int sign = 0;                                   ///< of m: +1 bounds from above, -1 from below
+  };
+  Edge edges_[3];
+  int min_x_, max_x_;
+};
+
 }  // namespace flagsim::render

@@ -137,3 +137,31 @@ TEST(TriangleSetup, PerspectiveCorrectInterpolation) {
 
 }  // namespace
 }  // namespace flagsim::render
+
+namespace flagsim::render {
+namespace {
+
+TEST(RowSpans, SteppingRowByRowGivesTheSameSpansAsSolvingEachRow) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> coordinate(-20.0f, 120.0f);
+  for (int trial = 0; trial < 500; ++trial) {
+    TriangleSetup setup;
+    if (!SetupTriangle(At(coordinate(random), coordinate(random)), At(coordinate(random), coordinate(random)),
+                       At(coordinate(random), coordinate(random)), 100, 100, &setup)) {
+      continue;
+    }
+    RowSpans spans(setup, setup.min_y);
+    for (int y = setup.min_y; y <= setup.max_y; ++y, spans.NextRow()) {
+      int first = 0, last = 0, step_first = 0, step_last = 0;
+      const bool solved = RowSpan(setup, y, &first, &last);
+      ASSERT_EQ(spans.Span(&step_first, &step_last), solved) << "trial " << trial << " row " << y;
+      if (solved) {
+        ASSERT_EQ(step_first, first);
+        ASSERT_EQ(step_last, last);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace flagsim::render
