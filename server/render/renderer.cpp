@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstring>
 
 namespace flagsim::render {
 namespace {
@@ -66,8 +67,10 @@ void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, co
 
 }  // namespace
 
-void Renderer::Render(const RenderScene& scene, const Camera& camera, const RenderOptions& options,
+void Renderer::Render(const RenderScene& scene, const Camera& camera, const RenderOptions& options_in,
                       Framebuffer* framebuffer) {
+  RenderOptions options = options_in;
+  options.tile_size = std::max(options.tile_size, 8);
   if (framebuffer->width != camera.width || framebuffer->height != camera.height) {
     framebuffer->Resize(camera.width, camera.height);
   }
@@ -86,7 +89,7 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   context.scene = &scene;
   context.mode = options.mode;
   context.eye = eye_;
-  TileStage(context, options.tile_size, options.threads, framebuffer);
+  TileStage(context, options, framebuffer);
 }
 
 // (world position, normal, uv) => (clip position, lighting or position/normal, uv)
@@ -222,18 +225,37 @@ void Renderer::BinStage(int width, int height, int tile_size) {
   }
 }
 
-void Renderer::TileStage(const ShadeContext& context, int tile_size, int threads, Framebuffer* framebuffer) {
-  const int tiles = tiles_x_ * tiles_y_;
-#pragma omp parallel for schedule(dynamic) num_threads(threads) if (threads > 1)
-  for (int index = 0; index < tiles; ++index) {
-    TileRect tile;
-    tile.x0 = (index % tiles_x_) * tile_size;
-    tile.y0 = (index / tiles_x_) * tile_size;
-    tile.x1 = std::min(tile.x0 + tile_size, framebuffer->width);
-    tile.y1 = std::min(tile.y0 + tile_size, framebuffer->height);
-    ClearTile(tile, *context.scene, framebuffer);
-    for (const uint32_t i : triangle_bins_[index]) RasterizeTriangle(setups_[i], tile, context, framebuffer);
-    for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], tile, framebuffer);
+void Renderer::TileStage(const ShadeContext& context, const RenderOptions& options, Framebuffer* framebuffer) {
+  const int tiles = tiles_x_ * tiles_y_, size = options.tile_size;
+#pragma omp parallel num_threads(options.threads) if (options.threads > 1)
+  {
+    std::vector<uint8_t> rgb(size_t(size) * size * 3);
+    std::vector<float> depth(size_t(size) * size);
+#pragma omp for schedule(dynamic)
+    for (int index = 0; index < tiles; ++index) {
+      TileTarget target;
+      target.rect.x0 = (index % tiles_x_) * size;
+      target.rect.y0 = (index / tiles_x_) * size;
+      target.rect.x1 = std::min(target.rect.x0 + size, framebuffer->width);
+      target.rect.y1 = std::min(target.rect.y0 + size, framebuffer->height);
+      target.image_height = framebuffer->height;
+      target.rgb = rgb.data();
+      target.rgb_stride = size_t(size) * 3;
+      target.depth = depth.data();
+      target.depth_stride = size_t(size);
+      ClearTile(*context.scene, target);
+      for (const uint32_t i : triangle_bins_[index]) RasterizeTriangle(setups_[i], context, target);
+      for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
+      // Out to the image: colour rows, and depth if asked for.
+      const int width = target.rect.x1 - target.rect.x0;
+      for (int y = target.rect.y0; y < target.rect.y1; ++y) {
+        std::memcpy(framebuffer->Pixel(target.rect.x0, y), target.Pixel(target.rect.x0, y), size_t(width) * 3);
+        if (options.keep_depth) {
+          std::memcpy(&framebuffer->depth[size_t(y) * framebuffer->width + target.rect.x0],
+                      target.Depth(target.rect.x0, y), size_t(width) * sizeof(float));
+        }
+      }
+    }
   }
 }
 

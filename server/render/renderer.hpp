@@ -5,7 +5,8 @@
 //                    cull or pick the back material; snap and set up (triangle_setup.hpp)
 //   binning          each triangle (or line) into the list of every tile its box touches,
 //                    in mesh and triangle order
-//   tiles            in parallel: sky, then the tile's triangles in order (tile_raster.hpp)
+//   tiles            in parallel, each in a small buffer of its own that stays in cache: sky,
+//                    the tile's triangles in order (tile_raster.hpp), then copied out
 //
 // Every stage's output is in a fixed order whatever the thread count, and each tile is drawn
 // by one thread, so the image is the same bit for bit at any number of threads.
@@ -27,7 +28,8 @@ namespace flagsim::render {
 struct RenderOptions {
   ShadingMode mode = ShadingMode::kGouraud;
   int threads = 1;
-  int tile_size = 64;  ///< px, square tiles (the stream's tiles too)
+  int tile_size = 64;  ///< px, square tiles (the stream's tiles too), 8 and up
+  bool keep_depth = false;  ///< also copy the depth buffer out (tiles keep it to themselves)
 };
 
 class Renderer {
@@ -45,7 +47,7 @@ class Renderer {
   void PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height, int threads);
   void LineStage(const RenderScene& scene, int width, int height);
   void BinStage(int width, int height, int tile_size);
-  void TileStage(const ShadeContext& context, int tile_size, int threads, Framebuffer* framebuffer);
+  void TileStage(const ShadeContext& context, const RenderOptions& options, Framebuffer* framebuffer);
 
   Eigen::Vector3f eye_;
   std::vector<std::vector<ClipVertex>> vertices_;       ///< per mesh, per vertex

@@ -26,6 +26,7 @@ RowPlane AlongRow(const Plane& plane, float fy) { return RowPlane{plane.origin +
 template <bool kPatterned>
 void FillSpanInterpolated(const TriangleSetup& t, const Material& material, const Texture& pattern, float fy,
                           int first, int last, float* __restrict depth, uint8_t* __restrict rgb) {
+  // depth and rgb point at pixel `first`.
   constexpr int kMaxSpan = 4096;
   constexpr int kChannels = kPatterned ? 8 : 6;
   const int n = last - first + 1;
@@ -35,7 +36,7 @@ void FillSpanInterpolated(const TriangleSetup& t, const Material& material, cons
   int any = 0;
   {
     const RowPlane z = AlongRow(t.depth, fy);
-    float* __restrict d = depth + first;
+    float* __restrict d = depth;
     for (int i = 0; i < n; ++i) {
       const float here = z.at + z.step * (fx0 + float(i));
       const bool nearer = here < d[i];
@@ -65,7 +66,7 @@ void FillSpanInterpolated(const TriangleSetup& t, const Material& material, cons
     green[i] = g * c[1] + c[4];
     blue[i] = b * c[2] + c[5];
   }
-  uint8_t* pixel = rgb + 3 * first;
+  uint8_t* pixel = rgb;
   for (int i = 0; i < n; ++i, pixel += 3) {
     if (!visible[i]) continue;
     pixel[0] = ToByte(red[i]);
@@ -75,6 +76,7 @@ void FillSpanInterpolated(const TriangleSetup& t, const Material& material, cons
 }
 
 /// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel.
+/// depth and rgb point at pixel `first`.
 void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy, int first, int last,
                    float* depth, uint8_t* rgb) {
   const RenderScene& scene = *context.scene;
@@ -85,8 +87,9 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy
   for (int x = first; x <= last; ++x) {
     const float fx = float(x - t.min_x);
     const float depth_here = z.at + z.step * fx;
-    if (!(depth_here < depth[x])) continue;
-    depth[x] = depth_here;
+    float& depth_there = depth[x - first];
+    if (!(depth_here < depth_there)) continue;
+    depth_there = depth_here;
     const float w = 1.0f / (inverse_w.at + inverse_w.step * fx);
     float c[kPlaneChannels];
     for (int k = 0; k < kPlaneChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
@@ -99,7 +102,7 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy
       base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) * (1.0f / 255));
     }
     const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
-    uint8_t* pixel = rgb + 3 * x;
+    uint8_t* pixel = rgb + 3 * (x - first);
     pixel[0] = ToByte(colour[0]);
     pixel[1] = ToByte(colour[1]);
     pixel[2] = ToByte(colour[2]);
@@ -108,24 +111,25 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy
 
 }  // namespace
 
-void ClearTile(const TileRect& tile, const RenderScene& scene, Framebuffer* framebuffer) {
+void ClearTile(const RenderScene& scene, const TileTarget& target) {
+  const TileRect& tile = target.rect;
+  const int pixels = tile.x1 - tile.x0;
   for (int y = tile.y0; y < tile.y1; ++y) {
-    const float t = framebuffer->height > 1 ? float(y) / (framebuffer->height - 1) : 0.0f;
+    const float t = target.image_height > 1 ? float(y) / (target.image_height - 1) : 0.0f;
     const Eigen::Vector3f sky = scene.sky_top + t * (scene.sky_horizon - scene.sky_top);
     // Four pixels are 12 bytes: copy that block along the row, then the last few pixels.
     uint8_t block[12];
     for (int k = 0; k < 12; ++k) block[k] = ToByte(sky[k % 3]);
-    uint8_t* row = framebuffer->Pixel(tile.x0, y);
-    const int pixels = tile.x1 - tile.x0;
+    uint8_t* row = target.Pixel(tile.x0, y);
     int x = 0;
     for (; x + 4 <= pixels; x += 4) std::memcpy(row + 3 * x, block, sizeof(block));
     for (; x < pixels; ++x) std::memcpy(row + 3 * x, block, 3);
-    std::fill_n(&framebuffer->depth[size_t(y) * framebuffer->width + tile.x0], tile.x1 - tile.x0, 1.0f);
+    std::fill_n(target.Depth(tile.x0, y), pixels, 1.0f);
   }
 }
 
-void RasterizeTriangle(const TriangleSetup& t, const TileRect& tile, const ShadeContext& context,
-                       Framebuffer* framebuffer) {
+void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, const TileTarget& target) {
+  const TileRect& tile = target.rect;
   const Material& material = context.scene->materials[t.material];
   const int y_first = std::max(t.min_y, tile.y0), y_last = std::min(t.max_y, tile.y1 - 1);
   if (y_first > y_last) return;
@@ -137,8 +141,8 @@ void RasterizeTriangle(const TriangleSetup& t, const TileRect& tile, const Shade
     last = std::min(last, tile.x1 - 1);
     if (first > last) continue;
     const float fy = float(y - t.min_y);
-    float* depth = &framebuffer->depth[size_t(y) * framebuffer->width];
-    uint8_t* rgb = framebuffer->Pixel(0, y);
+    float* depth = target.Depth(first, y);
+    uint8_t* rgb = target.Pixel(first, y);
     if (context.mode == ShadingMode::kPhong) {
       FillSpanPhong(t, context, fy, first, last, depth, rgb);
     } else if (material.patterned) {

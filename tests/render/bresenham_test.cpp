@@ -80,9 +80,11 @@ TEST(DrawLine, TileByTileDrawsWhatTheWholeLineDraws) {
   line.z0 = 0.2f;
   line.z1 = 0.6f;
   line.rgb[0] = 255;
-  DrawLine(line, TileRect{0, 0, 40, 30}, &whole);
+  DrawLine(line, TileTarget::Into(&whole, TileRect{0, 0, 40, 30}));
   for (int y = 0; y < 30; y += 8) {
-    for (int x = 0; x < 40; x += 8) DrawLine(line, TileRect{x, y, std::min(x + 8, 40), std::min(y + 8, 30)}, &tiled);
+    for (int x = 0; x < 40; x += 8) {
+      DrawLine(line, TileTarget::Into(&tiled, TileRect{x, y, std::min(x + 8, 40), std::min(y + 8, 30)}));
+    }
   }
   EXPECT_EQ(whole.rgb, tiled.rgb);
   EXPECT_EQ(whole.depth, tiled.depth);
@@ -96,11 +98,11 @@ TEST(DrawLine, HiddenBehindNearerDepth) {
   far_line.x1 = 9;
   far_line.z0 = far_line.z1 = 0.7f;
   far_line.rgb[1] = 200;
-  DrawLine(far_line, TileRect{0, 0, 10, 10}, &framebuffer);
+  DrawLine(far_line, TileTarget::Into(&framebuffer, TileRect{0, 0, 10, 10}));
   EXPECT_EQ(framebuffer.Pixel(5, 0)[1], 0);
   LineSetup near_line = far_line;
   near_line.z0 = near_line.z1 = 0.3f;
-  DrawLine(near_line, TileRect{0, 0, 10, 10}, &framebuffer);
+  DrawLine(near_line, TileTarget::Into(&framebuffer, TileRect{0, 0, 10, 10}));
   EXPECT_EQ(framebuffer.Pixel(5, 0)[1], 200);
 }
 

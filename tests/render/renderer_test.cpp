@@ -52,7 +52,9 @@ TEST(Renderer, TheFlagIsDrawnInFrontOfTheSky) {
   const RenderScene scene = WavyFlagScene();
   Renderer renderer;
   Framebuffer framebuffer;
-  renderer.Render(scene, SmallCamera(), RenderOptions{}, &framebuffer);
+  RenderOptions options;
+  options.keep_depth = true;
+  renderer.Render(scene, SmallCamera(), options, &framebuffer);
   // Project the middle of the flag and check that pixel is cloth (not sky: the sky is bluish
   // and brightest in blue; the cloth's yellow or dark blue differs from the sky gradient).
   const Camera camera = SmallCamera();
@@ -94,8 +96,9 @@ TEST(Renderer, ACameraInsideTheSceneClipsAtTheNearPlane) {
   camera.target = Eigen::Vector3d(0.7, 2.5, -1.0);
   Renderer renderer;
   Framebuffer one, two;
-  renderer.Render(scene, camera, RenderOptions{}, &one);
   RenderOptions options;
+  options.keep_depth = true;
+  renderer.Render(scene, camera, options, &one);
   options.threads = 2;
   renderer.Render(scene, camera, options, &two);
   EXPECT_EQ(one.rgb, two.rgb);

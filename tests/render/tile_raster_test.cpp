@@ -33,7 +33,7 @@ TEST(TileRaster, GouraudColoursAreTheInterpolatedLight) {
   ASSERT_TRUE(SetupTriangle(At(0, 0, 0.5f, 0), At(32, 0, 0.5f, 1), At(0, 32, 0.5f, 0), 32, 32, &t));
   ShadeContext context;
   context.scene = &scene;
-  RasterizeTriangle(t, TileRect{0, 0, 32, 32}, context, &framebuffer);
+  RasterizeTriangle(t, context, TileTarget::Into(&framebuffer, TileRect{0, 0, 32, 32}));
   for (const auto& [x, y] : {std::pair{0, 0}, std::pair{10, 3}, std::pair{20, 5}, std::pair{5, 20}}) {
     const int expected = int(255 * (x + 0.5f) / 32 + 0.5f);
     EXPECT_NEAR(framebuffer.Pixel(x, y)[0], expected, 1) << x << "," << y;
@@ -51,9 +51,9 @@ TEST(TileRaster, TheNearerTriangleWinsInEitherOrder) {
   for (const bool near_first : {true, false}) {
     Framebuffer framebuffer;
     framebuffer.Resize(16, 16);
-    const TileRect tile{0, 0, 16, 16};
-    RasterizeTriangle(near_first ? near_dark : far_light, tile, context, &framebuffer);
-    RasterizeTriangle(near_first ? far_light : near_dark, tile, context, &framebuffer);
+    const TileTarget tile = TileTarget::Into(&framebuffer, TileRect{0, 0, 16, 16});
+    RasterizeTriangle(near_first ? near_dark : far_light, context, tile);
+    RasterizeTriangle(near_first ? far_light : near_dark, context, tile);
     EXPECT_EQ(framebuffer.Pixel(3, 3)[0], 51) << near_first;  // 0.2 * 255
     EXPECT_FLOAT_EQ(framebuffer.depth[3 * 16 + 3], 0.3f);
   }
@@ -67,7 +67,7 @@ TEST(TileRaster, OnlyTheTileIsTouched) {
   ASSERT_TRUE(SetupTriangle(At(0, 0, 0.5f, 1), At(32, 0, 0.5f, 1), At(0, 32, 0.5f, 1), 32, 32, &t));
   Framebuffer framebuffer;
   framebuffer.Resize(32, 32);
-  RasterizeTriangle(t, TileRect{8, 0, 16, 8}, context, &framebuffer);
+  RasterizeTriangle(t, context, TileTarget::Into(&framebuffer, TileRect{8, 0, 16, 8}));
   EXPECT_EQ(framebuffer.Pixel(10, 2)[0], 255);
   EXPECT_EQ(framebuffer.Pixel(2, 2)[0], 0);
   EXPECT_EQ(framebuffer.Pixel(10, 10)[0], 0);
@@ -80,7 +80,7 @@ TEST(TileRaster, ClearPaintsTheSkyGradientAndFarDepth) {
   Framebuffer framebuffer;
   framebuffer.Resize(4, 11);
   std::fill(framebuffer.depth.begin(), framebuffer.depth.end(), 0.0f);
-  ClearTile(TileRect{0, 0, 4, 11}, scene, &framebuffer);
+  ClearTile(scene, TileTarget::Into(&framebuffer, TileRect{0, 0, 4, 11}));
   EXPECT_EQ(framebuffer.Pixel(2, 0)[2], 255);
   EXPECT_EQ(framebuffer.Pixel(2, 10)[0], 255);
   EXPECT_EQ(framebuffer.Pixel(2, 5)[0], 128);
