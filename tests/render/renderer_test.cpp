@@ -108,6 +108,70 @@ TEST(Renderer, ACameraInsideTheSceneClipsAtTheNearPlane) {
   }
 }
 
+/// A small reference image made without the rasterizer: a lit square facing the camera covers
+/// exactly the pixels whose centres fall inside its projection, each with the colour the
+/// lighting model gives it; the rest is sky.
+TEST(Renderer, AFacingSquareMatchesItsReferenceImage) {
+  RenderScene scene;
+  Material paint;
+  paint.colour = Eigen::Vector3f(0.8f, 0.5f, 0.2f);
+  paint.ambient = 0.3f;
+  paint.diffuse = 0.6f;
+  paint.specular = 0.0f;
+  scene.materials = {paint};
+  Light head_on;
+  head_on.vector = Eigen::Vector3f(0, 0, 1);  // along the square's normal: n . l = 1 everywhere
+  head_on.colour = Eigen::Vector3f(1.0f, 0.9f, 0.8f);
+  scene.lighting.lights = {head_on};
+  scene.lighting.ambient = Eigen::Vector3f(0.5f, 0.5f, 0.5f);
+  Mesh square;
+  for (const auto& [x, y] : {std::pair{-1.0f, -0.6f}, std::pair{1.0f, -0.6f}, std::pair{1.0f, 0.6f}, std::pair{-1.0f, 0.6f}}) {
+    square.positions.emplace_back(x, y, 0.0f);
+    square.normals.emplace_back(0.0f, 0.0f, 1.0f);
+    square.uvs.emplace_back(0.0f, 0.0f);
+  }
+  square.triangles = {{0, 1, 2}, {0, 2, 3}};
+  scene.meshes = {square};
+
+  Camera camera;
+  camera.eye = Eigen::Vector3d(0.013, -0.021, 5.0);  // off-centre: no edge on a pixel centre
+  camera.target = Eigen::Vector3d(0.013, -0.021, 0.0);
+  camera.width = 48;
+  camera.height = 32;
+  // Where the square's corners land, in pixels (y down).
+  const Eigen::Matrix4d clip_from_world = camera.Projection() * camera.View();
+  const auto screen = [&](double x, double y) {
+    const Eigen::Vector4d clip = clip_from_world * Eigen::Vector4d(x, y, 0, 1);
+    return Eigen::Vector2d((clip.x() / clip.w() + 1) / 2 * camera.width, (1 - clip.y() / clip.w()) / 2 * camera.height);
+  };
+  const Eigen::Vector2d low = screen(-1.0, 0.6), high = screen(1.0, -0.6);  // top-left, bottom-right
+  const Eigen::Vector3f light = paint.ambient * scene.lighting.ambient + paint.diffuse * head_on.colour;
+  const Eigen::Vector3f inside = paint.colour.cwiseProduct(light);
+
+  for (const ShadingMode mode : {ShadingMode::kFlat, ShadingMode::kGouraud, ShadingMode::kPhong}) {
+    Renderer renderer;
+    Framebuffer framebuffer;
+    RenderOptions options;
+    options.mode = mode;
+    renderer.Render(scene, camera, options, &framebuffer);
+    int covered = 0;
+    for (int y = 0; y < camera.height; ++y) {
+      const float t = float(y) / (camera.height - 1);
+      const Eigen::Vector3f sky = scene.sky_top + t * (scene.sky_horizon - scene.sky_top);
+      for (int x = 0; x < camera.width; ++x) {
+        const bool in = x + 0.5 > low.x() && x + 0.5 < high.x() && y + 0.5 > low.y() && y + 0.5 < high.y();
+        covered += in;
+        const Eigen::Vector3f expected = in ? inside : sky;
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_NEAR(framebuffer.Pixel(x, y)[k], std::lround(255 * expected[k]), 1)
+              << "mode " << int(mode) << " pixel " << x << "," << y;
+        }
+      }
+    }
+    EXPECT_GT(covered, 100);
+  }
+}
+
 TEST(Renderer, ImageSizeFollowsTheCamera) {
   const RenderScene scene = WavyFlagScene();
   Renderer renderer;
