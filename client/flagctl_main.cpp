@@ -197,7 +197,7 @@ int Snapshot(const Globals& globals, const std::string& path) {
         keyframe_incomplete |= manifest.keyframe && result != TileAssembler::FrameResult::kComplete;
       },
       nullptr, 1000);
-  const double deadline = MonotonicSeconds() + globals.timeout;
+  const double start = MonotonicSeconds(), deadline = start + globals.timeout;
   while (!complete) {
     // A keyframe that arrived with tiles missing calls for another request (a new id).
     keyframe_incomplete = false;
@@ -213,8 +213,9 @@ int Snapshot(const Globals& globals, const std::string& path) {
     std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
     return 1;
   }
-  std::printf("%s: %d x %d, frame %lld\n", path.c_str(), assembler.width(), assembler.height(),
-              static_cast<long long>(assembler.last_complete_frame()));
+  std::printf("%s: %d x %d, frame %lld, complete %.0f ms after the request\n", path.c_str(), assembler.width(),
+              assembler.height(), static_cast<long long>(assembler.last_complete_frame()),
+              1000 * (MonotonicSeconds() - start));
   return kOk;
 }
 

@@ -1,5 +1,6 @@
-// flagd: the flag simulation server. Steps the flag in real time (or as fast as it can),
-// publishes STATE, PARAMS and STATUS, and takes WIND, PARAM and REFRESH commands over LCM.
+// flagd: the flag simulation server. Steps the flag in real time (or as fast as it can), draws
+// and streams its frames as tiles, publishes STATE, PARAMS and STATUS, and takes WIND, PARAM,
+// CAMERA and REFRESH commands over LCM.
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
