@@ -74,6 +74,7 @@ void Server::StepDue(double now) {
     }
     const double frame_rate = session_.scene().service.frame_rate;
     if (frame_rate > 0 && time >= next_frame_time_) {
+      if (frame_due_) ++stats_.frames_skipped;  // the last one due was never drawn: the loop is behind
       frame_due_ = true;
       next_frame_time_ = std::max(next_frame_time_ + 1.0 / frame_rate, time);
     }

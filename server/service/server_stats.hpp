@@ -10,7 +10,7 @@ struct ServerStats {
   int64_t commands_accepted = 0;  ///< valid commands applied
   int64_t commands_rejected = 0;  ///< decoded but invalid: answered with a reason
   int64_t messages_dropped = 0;   ///< undecodable bytes on a command channel: no answer possible
-  int64_t frames_skipped = 0;     ///< frames due while the publisher was still sending the last
+  int64_t frames_skipped = 0;     ///< frames due but not drawn: the publisher or the loop was behind
 
   // Since the last STATUS (reset each time one is published).
   int64_t steps = 0;
