@@ -11,6 +11,11 @@ uint8_t ToByte(float value) {
   return scaled <= 0 ? 0 : scaled >= 255 ? 255 : static_cast<uint8_t>(scaled);
 }
 
+/// ToByte without branches, for loops that vectorise: the same result for every finite value.
+uint8_t ToByteBranchless(float value) {
+  return static_cast<uint8_t>(std::min(std::max(value * 255.0f + 0.5f, 0.0f), 255.0f));
+}
+
 /// A plane's value along one row: at + step * (x - min_x).
 struct RowPlane {
   float at, step;
@@ -32,7 +37,7 @@ void FillSpanInterpolated(const TriangleSetup& t, const Material& material, cons
   const int n = last - first + 1;
   const float fx0 = float(first - t.min_x);
   alignas(32) uint8_t visible[kMaxSpan];
-  alignas(32) float red[kMaxSpan], green[kMaxSpan], blue[kMaxSpan];
+  alignas(32) uint8_t red[kMaxSpan], green[kMaxSpan], blue[kMaxSpan];
   int any = 0;
   {
     const RowPlane z = AlongRow(t.depth, fy);
@@ -42,7 +47,7 @@ void FillSpanInterpolated(const TriangleSetup& t, const Material& material, cons
       const bool nearer = here < d[i];
       d[i] = nearer ? here : d[i];
       visible[i] = nearer;
-      any |= nearer;
+      any += nearer;
     }
   }
   if (!any) return;
@@ -62,16 +67,24 @@ void FillSpanInterpolated(const TriangleSetup& t, const Material& material, cons
       g *= texel[1] * (1.0f / 255);
       b *= texel[2] * (1.0f / 255);
     }
-    red[i] = r * c[0] + c[3];
-    green[i] = g * c[1] + c[4];
-    blue[i] = b * c[2] + c[5];
+    red[i] = ToByteBranchless(r * c[0] + c[3]);
+    green[i] = ToByteBranchless(g * c[1] + c[4]);
+    blue[i] = ToByteBranchless(b * c[2] + c[5]);
   }
   uint8_t* pixel = rgb;
+  if (any == n) {  // all in front: no mask to consult (the common case)
+    for (int i = 0; i < n; ++i, pixel += 3) {
+      pixel[0] = red[i];
+      pixel[1] = green[i];
+      pixel[2] = blue[i];
+    }
+    return;
+  }
   for (int i = 0; i < n; ++i, pixel += 3) {
     if (!visible[i]) continue;
-    pixel[0] = ToByte(red[i]);
-    pixel[1] = ToByte(green[i]);
-    pixel[2] = ToByte(blue[i]);
+    pixel[0] = red[i];
+    pixel[1] = green[i];
+    pixel[2] = blue[i];
   }
 }
 
