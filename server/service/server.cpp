@@ -1,7 +1,5 @@
 #include "server.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -65,22 +63,27 @@ void Server::StepDue(double now) {
     ++stats_.steps;
     stats_.step_seconds += end - start;
     accumulator_ = options_.fast ? accumulator_ - (end - start) : accumulator_ - dt;
-    // STATE every 1/state_rate of simulated time: which steps are published is part of the
-    // session, not of the machine's speed.
-    const double time = session_.simulation().state().time;
-    if (time >= next_state_time_) {
-      PublishState();
-      next_state_time_ = std::max(next_state_time_ + 1.0 / session_.scene().service.state_rate, time);
-    }
-    const double frame_rate = session_.scene().service.frame_rate;
-    if (frame_rate > 0 && time >= next_frame_time_) {
-      if (frame_due_) ++stats_.frames_skipped;  // the last one due was never drawn: the loop is behind
-      frame_due_ = true;
-      next_frame_time_ = std::max(next_frame_time_ + 1.0 / frame_rate, time);
-    }
+    AfterStep();
     if (end > deadline) break;
   }
   if (options_.fast) accumulator_ = 0;
+}
+
+// STATE and frames fall due on simulated time: which steps are published is part of the
+// session, not of the machine's speed. STATE goes out at once; a frame is drawn after the
+// stepping (FrameDue), and a second one falling due before that is skipped.
+void Server::AfterStep() {
+  const double time = session_.simulation().state().time;
+  if (time >= next_state_time_) {
+    PublishState();
+    next_state_time_ = std::max(next_state_time_ + 1.0 / session_.scene().service.state_rate, time);
+  }
+  const double frame_rate = session_.scene().service.frame_rate;
+  if (frame_rate > 0 && time >= next_frame_time_) {
+    if (frame_due_) ++stats_.frames_skipped;
+    frame_due_ = true;
+    next_frame_time_ = std::max(next_frame_time_ + 1.0 / frame_rate, time);
+  }
 }
 
 void Server::PublishDue(double now) {

@@ -48,6 +48,7 @@ class Server {
 
  private:
   void StepDue(double now);
+  void AfterStep();
   void PublishDue(double now);
   void PublishState();
   void PublishParams();
