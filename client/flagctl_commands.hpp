@@ -1,0 +1,41 @@
+// What each flagctl subcommand does, once its command line is parsed (flagctl_main.cpp).
+// Each returns the process's exit code: 0 ok, 2 usage, 3 rejected by the server (its reason
+// printed), 4 no answer within the timeout.
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "channels.hpp"
+#include "flagsim/camera_command_t.hpp"
+
+namespace flagsim {
+
+enum ExitCode { kOk = 0, kUsage = 2, kRejected = 3, kNoAnswer = 4 };
+
+/// Set by SIGINT / SIGTERM: watch and record stop and report.
+extern std::atomic<bool> g_stop;
+
+/// Options every subcommand takes.
+struct Globals {
+  std::string lcm_url;
+  std::string prefix = Channels::kDefaultPrefix;
+  double timeout = 2.0;  ///< s to wait for an answer
+};
+
+int Wind(const Globals& globals, const std::vector<double>& velocity, double gust, double ramp);
+/// PARAM assignments "NAME=VALUE"; `reset` first restores the scene.
+int Set(const Globals& globals, const std::vector<std::string>& assignments, bool reset);
+int Refresh(const Globals& globals);
+int Params(const Globals& globals);
+int Status(const Globals& globals);
+/// A line a second about the streams until `duration` s (0: until interrupted).
+int Watch(const Globals& globals, double duration);
+/// A keyframe, assembled and hash-checked, written as a PNG.
+int Snapshot(const Globals& globals, const std::string& path);
+int Camera(const Globals& globals, camera_command_t command);
+/// Every channel with the prefix into an LCM log until `duration` s (0: until interrupted).
+int Record(const Globals& globals, const std::string& path, double duration);
+
+}  // namespace flagsim
