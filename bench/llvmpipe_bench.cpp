@@ -34,6 +34,7 @@
 
 #include "flag_pose.hpp"
 #include "gl_scene.hpp"
+#include "measure.hpp"
 #include "png_file.hpp"
 #include "render/renderer.hpp"
 
@@ -84,33 +85,6 @@ bool ParseOptions(int argc, char** argv, Options* options) {
   return true;
 }
 
-/// draw() `kWarmupFrames` times untimed, then `frames` times timed => median ms per frame.
-template <typename Draw>
-double MedianMs(int frames, Draw draw) {
-  for (int i = 0; i < kWarmupFrames; ++i) draw();
-  std::vector<double> times;
-  for (int i = 0; i < frames; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    draw();
-    times.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  const size_t middle = times.size() / 2;
-  return times.size() % 2 == 1 ? times[middle] : 0.5 * (times[middle - 1] + times[middle]);
-}
-
-/// Two RGB8 images => peak signal-to-noise ratio over all channels, dB (peak 255).
-double Psnr(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-  double squares = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    const double difference = double(a[i]) - double(b[i]);
-    squares += difference * difference;
-  }
-  if (squares == 0) return INFINITY;
-  return 10.0 * std::log10(255.0 * 255.0 / (squares / double(a.size())));
-}
-
 /// (scene, camera, threads) => flagsim's median frame time, and its last image.
 double TimeFlagsim(const render::RenderScene& scene, const render::Camera& camera, int threads, int frames,
                    std::vector<uint8_t>* image) {
@@ -119,7 +93,8 @@ double TimeFlagsim(const render::RenderScene& scene, const render::Camera& camer
   options.threads = threads;
   render::Renderer renderer;
   render::Framebuffer framebuffer;
-  const double ms = MedianMs(frames, [&] { renderer.Render(scene, camera, options, &framebuffer); });
+  const double ms =
+      bench::MedianMs(kWarmupFrames, frames, [&] { renderer.Render(scene, camera, options, &framebuffer); });
   *image = framebuffer.rgb;
   return ms;
 }
@@ -131,7 +106,7 @@ double TimeLlvmpipe(const render::RenderScene& scene, const render::Camera& came
   *error = renderer.Init(camera.width, camera.height, scene.pattern);
   if (!error->empty()) return 0;
   std::vector<uint8_t> rgba;
-  const double ms = MedianMs(frames, [&] { renderer.Render(scene, camera, &rgba); });
+  const double ms = bench::MedianMs(kWarmupFrames, frames, [&] { renderer.Render(scene, camera, &rgba); });
   *image = bench::RgbTopDown(rgba, camera.width, camera.height);
   return ms;
 }
@@ -160,7 +135,7 @@ bool Measure(Row* row, const Options& options) {
   std::string error;
   row->flagsim_ms = TimeFlagsim(scene, camera, row->threads, options.frames, &images.flagsim);
   row->llvmpipe_ms = TimeLlvmpipe(scene, camera, options.frames, &images.llvmpipe, &error);
-  if (error.empty()) row->psnr_db = Psnr(images.flagsim, images.llvmpipe);
+  if (error.empty()) row->psnr_db = bench::Psnr(images.flagsim, images.llvmpipe);
   const bool saved =
       std::pair{row->width, row->height} == kSavedSize && std::pair{row->cols, row->rows} == kSavedGrid;
   if (error.empty() && saved && !options.out_dir.empty()) error = WriteImages(options.out_dir, *row, images);

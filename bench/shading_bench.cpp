@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "flag_pose.hpp"
+#include "measure.hpp"
 #include "render/renderer.hpp"
 #include "render/shading_mode.hpp"
 
@@ -99,22 +100,6 @@ render::RenderOptions FrameOptions(render::ShadingMode mode, bool keep_depth) {
   return options;
 }
 
-/// draw() kWarmupFrames times untimed, then `frames` times timed => median ms per frame.
-template <typename Draw>
-double MedianMs(int frames, Draw draw) {
-  for (int i = 0; i < kWarmupFrames; ++i) draw();
-  std::vector<double> times;
-  for (int i = 0; i < frames; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    draw();
-    const auto end = std::chrono::steady_clock::now();
-    times.push_back(std::chrono::duration<double, std::milli>(end - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  const size_t middle = times.size() / 2;
-  return times.size() % 2 == 1 ? times[middle] : 0.5 * (times[middle - 1] + times[middle]);
-}
-
 /// A (kWidth * factor) x (kHeight * factor) RGB8 image => kWidth x kHeight, each factor x factor
 /// block of samples averaged per channel, rounded to nearest.
 std::vector<uint8_t> BoxFilter(const render::Framebuffer& large, int factor) {
@@ -160,23 +145,6 @@ std::vector<uint8_t> FlagMask(const render::RenderScene& scene) {
   return mask;
 }
 
-/// Two RGB8 images, and a per-pixel mask or none => PSNR over the (masked) pixels' channels, dB
-/// (peak 255); infinite when they agree.
-double Psnr(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, const std::vector<uint8_t>* mask) {
-  double squares = 0;
-  size_t values = 0;
-  for (size_t pixel = 0; pixel * 3 < a.size(); ++pixel) {
-    if (mask && !(*mask)[pixel]) continue;
-    for (size_t k = pixel * 3; k < pixel * 3 + 3; ++k) {
-      const double difference = double(a[k]) - double(b[k]);
-      squares += difference * difference;
-    }
-    values += 3;
-  }
-  if (squares == 0) return INFINITY;
-  return 10.0 * std::log10(255.0 * 255.0 / (squares / double(values)));
-}
-
 /// A kWidth x kHeight RGB8 image => a binary PPM at `path`; false if it could not be written.
 bool WritePpm(const std::string& path, const std::vector<uint8_t>& rgb) {
   std::FILE* file = std::fopen(path.c_str(), "wb");
@@ -213,9 +181,10 @@ Row MeasureMode(const FlagCase& flag, render::ShadingMode mode, const Options& o
   row.mode = render::ShadingModeNames()[int(mode)];
   row.cols = flag.cols;
   row.rows = flag.rows;
-  row.ms = MedianMs(options.frames, [&] { renderer.Render(flag.scene, camera, render_options, &frame); });
-  row.psnr_image_db = Psnr(frame.rgb, flag.reference, nullptr);
-  row.psnr_flag_db = Psnr(frame.rgb, flag.reference, &flag.flag_mask);
+  row.ms = bench::MedianMs(kWarmupFrames, options.frames,
+                           [&] { renderer.Render(flag.scene, camera, render_options, &frame); });
+  row.psnr_image_db = bench::Psnr(frame.rgb, flag.reference, nullptr);
+  row.psnr_flag_db = bench::Psnr(frame.rgb, flag.reference, &flag.flag_mask);
   if (!options.images_dir.empty()) {
     const std::string path =
         options.images_dir + "/" + row.mode + "_" + GridName(flag.cols, flag.rows) + ".ppm";

@@ -1,0 +1,47 @@
+// What the benchmarks measure, the same way in each: the median time of a repeated draw, and
+// the peak signal-to-noise ratio between two RGB8 images.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace flagsim::bench {
+
+/// draw() `warmup` times untimed, then `frames` times timed => median ms per call.
+template <typename Draw>
+double MedianMs(int warmup, int frames, Draw draw) {
+  for (int i = 0; i < warmup; ++i) draw();
+  std::vector<double> times;
+  for (int i = 0; i < frames; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    draw();
+    const auto end = std::chrono::steady_clock::now();
+    times.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+  }
+  std::sort(times.begin(), times.end());
+  const size_t middle = times.size() / 2;
+  return times.size() % 2 == 1 ? times[middle] : 0.5 * (times[middle - 1] + times[middle]);
+}
+
+/// Two RGB8 images, and a per-pixel mask or none => PSNR over the (masked) pixels' channels, dB
+/// (peak 255); infinite when they agree.
+inline double Psnr(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b,
+                   const std::vector<uint8_t>* mask = nullptr) {
+  double squares = 0;
+  size_t values = 0;
+  for (size_t pixel = 0; pixel * 3 < a.size(); ++pixel) {
+    if (mask && !(*mask)[pixel]) continue;
+    for (size_t k = pixel * 3; k < pixel * 3 + 3; ++k) {
+      const double difference = double(a[k]) - double(b[k]);
+      squares += difference * difference;
+    }
+    values += 3;
+  }
+  if (squares == 0) return INFINITY;
+  return 10.0 * std::log10(255.0 * 255.0 / (squares / double(values)));
+}
+
+}  // namespace flagsim::bench
