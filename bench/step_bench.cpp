@@ -21,9 +21,8 @@ void BM_SymplecticEulerStep(benchmark::State& bench) {
   for (auto _ : bench) simulation.Step();
   const double node_steps = double(simulation.model().num_nodes()) * simulation.substeps();
   bench.counters["substeps"] = simulation.substeps();
-  bench.counters["per_node_step"] =
-      benchmark::Counter(node_steps * double(bench.iterations()),
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  bench.counters["per_node_step"] = benchmark::Counter(
+      node_steps * double(bench.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_SymplecticEulerStep)
     ->ArgNames({"cols", "rows", "threads"})

@@ -19,7 +19,8 @@ std::string NewClientId() {
 
 CommandClient::CommandClient(Bus& bus, const Channels& channels, double timeout_seconds)
     : bus_(bus), timeout_(timeout_seconds), client_id_(NewClientId()) {
-  bus_.Subscribe(channels.ack, [this](const std::string&, const uint8_t* data, size_t size) { OnAck(data, size); });
+  bus_.Subscribe(channels.ack,
+                 [this](const std::string&, const uint8_t* data, size_t size) { OnAck(data, size); });
 }
 
 void CommandClient::OnAck(const uint8_t* data, size_t size) {

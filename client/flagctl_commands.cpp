@@ -48,7 +48,8 @@ int Report(const Link& link, const CommandOutcome& outcome) {
     case CommandOutcome::kRejected:
       std::fprintf(stderr, "flagctl: rejected: %s\n", outcome.reason.c_str());
       return kRejected;
-    case CommandOutcome::kNoAnswer: break;
+    case CommandOutcome::kNoAnswer:
+      break;
   }
   return link.NoAnswer("answer");
 }
@@ -94,8 +95,9 @@ int Refresh(const Globals& globals) {
   if (!HandleUntil(link.bus, globals.timeout, [&state] { return state.has_value(); })) {
     return link.NoAnswer("STATE");
   }
-  std::printf("step %lld  t = %.3f s  %d x %d nodes  state hash %016llx\n", static_cast<long long>(state->step),
-              state->sim_time, state->cols, state->rows, static_cast<unsigned long long>(state->state_hash));
+  std::printf("step %lld  t = %.3f s  %d x %d nodes  state hash %016llx\n",
+              static_cast<long long>(state->step), state->sim_time, state->cols, state->rows,
+              static_cast<unsigned long long>(state->state_hash));
   return kOk;
 }
 
@@ -130,9 +132,11 @@ int Watch(const Globals& globals, double duration) {
         state_bytes += state.getEncodedSize();
       },
       &invalid, 1000);
-  SubscribeDecoded<status_t>(link.bus, link.channels.status, [&status](const status_t& s) { status = s; }, &invalid);
+  SubscribeDecoded<status_t>(
+      link.bus, link.channels.status, [&status](const status_t& s) { status = s; }, &invalid);
   int64_t frames = 0, tiles = 0, tile_bytes = 0;
-  SubscribeDecoded<frame_t>(link.bus, link.channels.frame, [&frames](const frame_t&) { ++frames; }, &invalid, 1000);
+  SubscribeDecoded<frame_t>(
+      link.bus, link.channels.frame, [&frames](const frame_t&) { ++frames; }, &invalid, 1000);
   SubscribeDecoded<tile_t>(
       link.bus, link.channels.tile,
       [&](const tile_t& tile) {
@@ -149,8 +153,8 @@ int Watch(const Globals& globals, double duration) {
     link.bus.Handle(50);
     if (MonotonicSeconds() - last_line < 1.0 || !latest) continue;
     const double elapsed = MonotonicSeconds() - last_line;
-    std::printf("t %9.3f s  step %8lld  STATE %5.1f Hz %6.1f KB  hash %016llx  tip %s",
-                latest->sim_time, static_cast<long long>(latest->step), states / elapsed,
+    std::printf("t %9.3f s  step %8lld  STATE %5.1f Hz %6.1f KB  hash %016llx  tip %s", latest->sim_time,
+                static_cast<long long>(latest->step), states / elapsed,
                 states > 0 ? state_bytes / 1024.0 / states : 0.0,
                 static_cast<unsigned long long>(latest->state_hash), TipText(*latest).c_str());
     if (status) std::printf("  rtf %.2f  step %.0f us", status->real_time_factor, status->step_time_us);
@@ -163,7 +167,8 @@ int Watch(const Globals& globals, double duration) {
     states = state_bytes = frames = tiles = tile_bytes = 0;
     last_line = MonotonicSeconds();
   }
-  if (invalid > 0) std::fprintf(stderr, "flagctl: %lld undecodable message(s) ignored\n", static_cast<long long>(invalid));
+  if (invalid > 0)
+    std::fprintf(stderr, "flagctl: %lld undecodable message(s) ignored\n", static_cast<long long>(invalid));
   if (total_states == 0) return link.NoAnswer("STATE");
   std::printf("%lld states received\n", static_cast<long long>(total_states));
   return kOk;
@@ -176,8 +181,8 @@ int Snapshot(const Globals& globals, const std::string& path) {
   TileAssembler assembler;
   bool complete = false, keyframe_incomplete = false;
   bool waiting = false;  // for frames after our request
-  SubscribeDecoded<tile_t>(link.bus, link.channels.tile, [&](const tile_t& tile) { assembler.AddTile(tile); },
-                           nullptr, 10000);
+  SubscribeDecoded<tile_t>(
+      link.bus, link.channels.tile, [&](const tile_t& tile) { assembler.AddTile(tile); }, nullptr, 10000);
   SubscribeDecoded<frame_t>(
       link.bus, link.channels.frame,
       [&](const frame_t& manifest) {
@@ -203,8 +208,8 @@ int Snapshot(const Globals& globals, const std::string& path) {
     std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
     return 1;
   }
-  std::printf("%s: %d x %d, frame %lld, complete %.0f ms after the request\n", path.c_str(), assembler.width(),
-              assembler.height(), static_cast<long long>(assembler.last_complete_frame()),
+  std::printf("%s: %d x %d, frame %lld, complete %.0f ms after the request\n", path.c_str(),
+              assembler.width(), assembler.height(), static_cast<long long>(assembler.last_complete_frame()),
               1000 * (MonotonicSeconds() - start));
   return kOk;
 }
@@ -237,8 +242,9 @@ int Record(const Globals& globals, const std::string& path, double duration) {
                  static_cast<long long>(recorder->events()));
     return 1;
   }
-  std::printf("%s: %lld events, %.1f KB in %.1f s\n", path.c_str(), static_cast<long long>(recorder->events()),
-              recorder->bytes() / 1024.0, MonotonicSeconds() - start);
+  std::printf("%s: %lld events, %.1f KB in %.1f s\n", path.c_str(),
+              static_cast<long long>(recorder->events()), recorder->bytes() / 1024.0,
+              MonotonicSeconds() - start);
   return recorder->events() > 0 ? kOk : link.NoAnswer("message");
 }
 

@@ -3,7 +3,6 @@
 // command line; flagctl_commands.cpp does the work.
 // Exit codes: 0 ok, 2 usage, 3 rejected by the server (its reason printed), 4 no answer.
 #include <CLI/CLI.hpp>
-
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -20,8 +19,9 @@ void OnSignal(int) { flagsim::g_stop.store(true); }
 int main(int argc, char** argv) {
   using namespace flagsim;
   Globals globals;
-  CLI::App app{"flagctl: steer and watch a flagd server over LCM\n"
-               "exit codes: 0 ok, 2 usage, 3 rejected by the server, 4 no answer within --timeout"};
+  CLI::App app{
+      "flagctl: steer and watch a flagd server over LCM\n"
+      "exit codes: 0 ok, 2 usage, 3 rejected by the server, 4 no answer within --timeout"};
   app.fallthrough();  // global options may follow the subcommand
   app.require_subcommand(1);
   app.add_option("--lcm-url", globals.lcm_url,
@@ -33,10 +33,13 @@ int main(int argc, char** argv) {
 
   std::vector<double> velocity;
   double gust = 0, ramp = 0;
-  CLI::App* wind = app.add_subcommand("wind", "set the wind velocity (m/s, world frame: x along the flag, y up)");
+  CLI::App* wind =
+      app.add_subcommand("wind", "set the wind velocity (m/s, world frame: x along the flag, y up)");
   wind->add_option("velocity", velocity, "VX VY VZ in m/s")->expected(3)->required();
-  wind->add_option("--gust", gust, "gust strength, fraction of the wind speed (0 .. 1)")->capture_default_str();
-  wind->add_option("--ramp", ramp, "seconds of simulated time to reach this wind (0 .. 60)")->capture_default_str();
+  wind->add_option("--gust", gust, "gust strength, fraction of the wind speed (0 .. 1)")
+      ->capture_default_str();
+  wind->add_option("--ramp", ramp, "seconds of simulated time to reach this wind (0 .. 60)")
+      ->capture_default_str();
 
   std::vector<std::string> assignments;
   CLI::App* set = app.add_subcommand("set", "set parameters: NAME=VALUE ... (see flagctl params)");
@@ -78,19 +81,27 @@ int main(int argc, char** argv) {
     return move;
   };
   add_move("rotate-x", "turn the scene about the x axis through the target", camera_command_t::ROTATE_X)
-      ->add_option("degrees", degrees)->required();
+      ->add_option("degrees", degrees)
+      ->required();
   add_move("rotate-y", "turn the scene about the y (up) axis through the target", camera_command_t::ROTATE_Y)
-      ->add_option("degrees", degrees)->required();
+      ->add_option("degrees", degrees)
+      ->required();
   add_move("rotate-z", "turn the scene about the z axis through the target", camera_command_t::ROTATE_Z)
-      ->add_option("degrees", degrees)->required();
+      ->add_option("degrees", degrees)
+      ->required();
   CLI::App* orbit = add_move("orbit", "move the eye around the target", camera_command_t::ORBIT);
   orbit->add_option("azimuth", degrees, "degrees")->required();
   orbit->add_option("elevation", degrees2, "degrees")->required();
   add_move("translate", "move eye and target by X Y Z", camera_command_t::TRANSLATE)
-      ->add_option("offset", point, "X Y Z in m")->expected(3)->required();
+      ->add_option("offset", point, "X Y Z in m")
+      ->expected(3)
+      ->required();
   add_move("look-at", "aim at the point X Y Z", camera_command_t::LOOK_AT)
-      ->add_option("point", point, "X Y Z in m")->expected(3)->required();
-  CLI::App* scale = add_move("scale", "scale the scene about a point (default: the origin)", camera_command_t::SCALE);
+      ->add_option("point", point, "X Y Z in m")
+      ->expected(3)
+      ->required();
+  CLI::App* scale =
+      add_move("scale", "scale the scene about a point (default: the origin)", camera_command_t::SCALE);
   scale->add_option("factor", camera_command.factor, "2 doubles the apparent size")->required();
   scale->add_option("--about", point, "X Y Z in m")->expected(3);
   CLI::App* size = add_move("size", "set the image size", camera_command_t::SET_IMAGE_SIZE);

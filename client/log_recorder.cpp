@@ -1,7 +1,6 @@
 #include "log_recorder.hpp"
 
 #include <lcm/lcm-cpp.hpp>
-
 #include <stdexcept>
 
 #include "utime.hpp"

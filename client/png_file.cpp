@@ -29,8 +29,8 @@ std::string WritePng(const std::string& path, int width, int height, const uint8
     return "writing " + path + " failed";
   }
   png_init_io(png, file.get());
-  png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int y = 0; y < height; ++y) png_write_row(png, const_cast<uint8_t*>(rgb + size_t(y) * width * 3));
   png_write_end(png, nullptr);
@@ -41,7 +41,8 @@ std::string WritePng(const std::string& path, int width, int height, const uint8
 std::string ReadPng(const std::string& path, int* width, int* height, std::vector<uint8_t>* rgb) {
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) return "cannot read " + path + ": " + image.message;
+  if (!png_image_begin_read_from_file(&image, path.c_str()))
+    return "cannot read " + path + ": " + image.message;
   image.format = PNG_FORMAT_RGB;
   rgb->resize(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, rgb->data(), 0, nullptr)) {

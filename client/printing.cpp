@@ -14,13 +14,15 @@ std::string Number(double value) {
 
 std::string Range(const parameter_t& row) {
   switch (row.kind) {
-    case parameter_t::BOOLEAN: return "true|false";
+    case parameter_t::BOOLEAN:
+      return "true|false";
     case parameter_t::CHOICE: {
       std::string names;
       for (const std::string& choice : row.choices) names += (names.empty() ? "" : "|") + choice;
       return names;
     }
-    default: return Number(row.min_value) + " .. " + Number(row.max_value);
+    default:
+      return Number(row.min_value) + " .. " + Number(row.max_value);
   }
 }
 
@@ -45,10 +47,11 @@ void PrintParams(const params_t& params, std::ostream& out) {
   }
   char line[1024];
   const auto print = [&](const std::string& name, const std::string& value, const std::string& unit,
-                         const std::string& range, const std::string& fallback, const std::string& description) {
+                         const std::string& range, const std::string& fallback,
+                         const std::string& description) {
     std::snprintf(line, sizeof(line), "%-*s  %-*s  %-*s  %-*s  %-10s  %s\n", int(name_width), name.c_str(),
-                  int(value_width), value.c_str(), int(unit_width), unit.c_str(), int(range_width), range.c_str(),
-                  fallback.c_str(), description.c_str());
+                  int(value_width), value.c_str(), int(unit_width), unit.c_str(), int(range_width),
+                  range.c_str(), fallback.c_str(), description.c_str());
     out << line;
   };
   print("name", "value", "unit", "range", "default", "description");
@@ -66,7 +69,8 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 "steps per second:  %.1f (%d substeps each, %.1f us per step)\n"
                 "flag:              %d nodes, %s, %d thread(s)%s\n"
                 "state rate:        %.1f Hz (%.1f us to publish)\n"
-                "frames:            %.1f Hz, %.0f us to draw, %.0f us to encode, %.1f tiles and %.0f bytes each, %lld skipped\n"
+                "frames:            %.1f Hz, %.0f us to draw, %.0f us to encode, %.1f tiles and %.0f bytes "
+                "each, %lld skipped\n"
                 "bytes per second:  %.0f\n"
                 "commands:          %lld accepted, %lld rejected, %lld undecodable dropped\n"
                 "recoveries:        %lld\n",
@@ -76,7 +80,8 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 status.state_rate_hz, status.publish_time_us, status.frame_rate_hz, status.render_time_us,
                 status.encode_time_us, status.tiles_per_frame, status.frame_bytes,
                 static_cast<long long>(status.frames_skipped), status.bytes_per_second,
-                static_cast<long long>(status.commands_accepted), static_cast<long long>(status.commands_rejected),
+                static_cast<long long>(status.commands_accepted),
+                static_cast<long long>(status.commands_rejected),
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;
 }

@@ -49,7 +49,8 @@ std::string TileAssembler::Place(const tile_t& tile) {
   } else {
     return "unknown tile encoding " + std::to_string(tile.encoding);
   }
-  if (static_cast<int64_t>(XXH3_64bits(pixels.data(), size)) != tile.pixel_hash) return "tile pixel hash mismatch";
+  if (static_cast<int64_t>(XXH3_64bits(pixels.data(), size)) != tile.pixel_hash)
+    return "tile pixel hash mismatch";
   for (int row = 0; row < tile.height; ++row) {
     std::copy_n(&pixels[size_t(row) * tile.width * 3], size_t(tile.width) * 3,
                 &image_[(size_t(tile.y + row) * width_ + tile.x) * 3]);
@@ -59,8 +60,8 @@ std::string TileAssembler::Place(const tile_t& tile) {
 }
 
 TileAssembler::FrameResult TileAssembler::AddManifest(const frame_t& manifest) {
-  if (manifest.width <= 0 || manifest.height <= 0 || manifest.width > kMaxWidth || manifest.height > kMaxHeight ||
-      manifest.tile_size <= 0 || manifest.tile_size > 4096) {
+  if (manifest.width <= 0 || manifest.height <= 0 || manifest.width > kMaxWidth ||
+      manifest.height > kMaxHeight || manifest.tile_size <= 0 || manifest.tile_size > 4096) {
     return FrameResult::kRefused;
   }
   if (manifest.width != width_ || manifest.height != height_ || manifest.tile_size != tile_size_) {

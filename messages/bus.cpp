@@ -1,8 +1,7 @@
 #include "bus.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <cstdlib>
+#include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
 namespace flagsim {

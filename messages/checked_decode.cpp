@@ -7,8 +7,8 @@ namespace flagsim::wire {
 std::string CheckEncoded(const char* type_name, int64_t hash, const uint8_t* data, size_t size,
                          size_t max_size) {
   if (size > max_size) {
-    return std::to_string(size) + " bytes is over the " + std::to_string(max_size) +
-           "-byte limit for " + type_name;
+    return std::to_string(size) + " bytes is over the " + std::to_string(max_size) + "-byte limit for " +
+           type_name;
   }
   if (size < 8) return "truncated: " + std::to_string(size) + " bytes";
   uint64_t fingerprint = 0;  // big-endian, as LCM writes it

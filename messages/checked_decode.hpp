@@ -16,8 +16,7 @@ std::string CheckEncoded(const char* type_name, int64_t hash, const uint8_t* dat
 
 /// Decodes a Message from untrusted bytes; nullopt (with *error set) if they are not one.
 template <class Message>
-std::optional<Message> CheckedDecode(const uint8_t* data, size_t size, size_t max_size,
-                                     std::string* error) {
+std::optional<Message> CheckedDecode(const uint8_t* data, size_t size, size_t max_size, std::string* error) {
   *error = CheckEncoded(Message::getTypeName(), Message::getHash(), data, size, max_size);
   if (!error->empty()) return std::nullopt;
   Message message;

@@ -25,12 +25,10 @@ std::vector<std::string> Tokenize(std::string_view text) {
       i = text.find("*/", i);
       if (i == std::string_view::npos) break;
       i += 2;
-    } else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-' ||
-               c == '+') {
+    } else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-' || c == '+') {
       size_t end = i;
-      while (end < text.size() &&
-             (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_' ||
-              text[end] == '.' || text[end] == '-' || text[end] == '+')) {
+      while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_' ||
+                                   text[end] == '.' || text[end] == '-' || text[end] == '+')) {
         ++end;
       }
       tokens.emplace_back(text.substr(i, end - i));
@@ -109,11 +107,9 @@ class Parser {
 
   static void SetType(const std::string& name, Field* field) {
     static const std::map<std::string, Primitive> primitives = {
-        {"int8_t", Primitive::kInt8},   {"int16_t", Primitive::kInt16},
-        {"int32_t", Primitive::kInt32}, {"int64_t", Primitive::kInt64},
-        {"float", Primitive::kFloat},   {"double", Primitive::kDouble},
-        {"boolean", Primitive::kBoolean}, {"byte", Primitive::kByte},
-        {"string", Primitive::kString}};
+        {"int8_t", Primitive::kInt8},     {"int16_t", Primitive::kInt16}, {"int32_t", Primitive::kInt32},
+        {"int64_t", Primitive::kInt64},   {"float", Primitive::kFloat},   {"double", Primitive::kDouble},
+        {"boolean", Primitive::kBoolean}, {"byte", Primitive::kByte},     {"string", Primitive::kString}};
     if (const auto found = primitives.find(name); found != primitives.end()) {
       field->type = found->second;
       return;
@@ -148,14 +144,19 @@ size_t FixedSize(Primitive type) {
   switch (type) {
     case Primitive::kInt8:
     case Primitive::kBoolean:
-    case Primitive::kByte: return 1;
-    case Primitive::kInt16: return 2;
+    case Primitive::kByte:
+      return 1;
+    case Primitive::kInt16:
+      return 2;
     case Primitive::kInt32:
-    case Primitive::kFloat: return 4;
+    case Primitive::kFloat:
+      return 4;
     case Primitive::kInt64:
-    case Primitive::kDouble: return 8;
+    case Primitive::kDouble:
+      return 8;
     case Primitive::kString:
-    case Primitive::kStruct: return 0;
+    case Primitive::kStruct:
+      return 0;
   }
   return 0;
 }
@@ -186,8 +187,7 @@ class Walker {
     for (size_t i = 0; i < bytes; ++i) value = (value << 8) | data_[offset_ + i];
     offset_ += bytes;
     const int shift = static_cast<int>(64 - 8 * bytes);  // sign-extend
-    return shift == 0 ? static_cast<int64_t>(value)
-                      : static_cast<int64_t>(value << shift) >> shift;
+    return shift == 0 ? static_cast<int64_t>(value) : static_cast<int64_t>(value << shift) >> shift;
   }
 
   std::string WalkStruct(const std::string& type_name, int depth) {
@@ -212,8 +212,8 @@ class Walker {
         }
         // Every element takes at least one byte, so a count past the bytes left is a lie.
         if (length < 0 || (length > 0 && count > static_cast<int64_t>(Left()) / length)) {
-          return field.name + ": " + std::to_string(length) + " elements but " +
-                 std::to_string(Left()) + " bytes left";
+          return field.name + ": " + std::to_string(length) + " elements but " + std::to_string(Left()) +
+                 " bytes left";
         }
         count *= length;
       }
@@ -224,16 +224,15 @@ class Walker {
   }
 
   static bool IsScalarInteger(const Field& field) {
-    return field.dimensions.empty() &&
-           (field.type == Primitive::kInt8 || field.type == Primitive::kInt16 ||
-            field.type == Primitive::kInt32 || field.type == Primitive::kInt64);
+    return field.dimensions.empty() && (field.type == Primitive::kInt8 || field.type == Primitive::kInt16 ||
+                                        field.type == Primitive::kInt32 || field.type == Primitive::kInt64);
   }
 
   std::string WalkElements(const Field& field, int64_t count, int depth) {
     if (const size_t fixed = FixedSize(field.type); fixed > 0) {
       if (static_cast<uint64_t>(count) * fixed > Left()) {
-        return field.name + ": needs " + std::to_string(count * fixed) + " bytes, " +
-               std::to_string(Left()) + " left";
+        return field.name + ": needs " + std::to_string(count * fixed) + " bytes, " + std::to_string(Left()) +
+               " left";
       }
       if (field.type == Primitive::kBoolean) {  // LCM writes 0 or 1; anything else is not ours
         for (int64_t i = 0; i < count; ++i) {
@@ -244,8 +243,8 @@ class Walker {
       return "";
     }
     for (int64_t i = 0; i < count; ++i) {
-      std::string error = field.type == Primitive::kString ? WalkString(field)
-                                                          : WalkStruct(field.struct_name, depth + 1);
+      std::string error =
+          field.type == Primitive::kString ? WalkString(field) : WalkStruct(field.struct_name, depth + 1);
       if (!error.empty()) return error;
     }
     return "";
@@ -255,8 +254,8 @@ class Walker {
     if (Left() < 4) return field.name + ": truncated string length";
     const int64_t length = ReadInteger(4);
     if (length < 1 || length > static_cast<int64_t>(Left())) {
-      return field.name + ": string length " + std::to_string(length) + " with " +
-             std::to_string(Left()) + " bytes left";
+      return field.name + ": string length " + std::to_string(length) + " with " + std::to_string(Left()) +
+             " bytes left";
     }
     if (std::memchr(data_ + offset_, 0, length - 1) != nullptr || data_[offset_ + length - 1] != 0) {
       return field.name + ": a string must end at its one NUL";

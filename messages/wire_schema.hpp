@@ -27,7 +27,7 @@ struct Dimension {
 struct Field {
   std::string name;
   Primitive type = Primitive::kInt8;
-  std::string struct_name;         ///< for kStruct: the nested type, without package
+  std::string struct_name;            ///< for kStruct: the nested type, without package
   std::vector<Dimension> dimensions;  ///< empty for a scalar
 };
 

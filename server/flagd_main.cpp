@@ -1,9 +1,9 @@
 // flagd: the flag simulation server. Steps the flag in real time (or as fast as it can), draws
 // and streams its frames as tiles, publishes STATE, PARAMS and STATUS, and takes WIND, PARAM,
 // CAMERA and REFRESH commands over LCM.
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -37,8 +37,8 @@ flagsim::Scene BuildScene(const Options& options) {
     if (equals == std::string::npos) {
       throw flagsim::SceneError("--set " + assignment + ": expected NAME=VALUE");
     }
-    const std::string problem = flagsim::ParameterTable::Get().Assign(
-        assignment.substr(0, equals), assignment.substr(equals + 1), &scene);
+    const std::string problem = flagsim::ParameterTable::Get().Assign(assignment.substr(0, equals),
+                                                                      assignment.substr(equals + 1), &scene);
     if (!problem.empty()) throw flagsim::SceneError("--set " + problem);
   }
   const std::string problem = flagsim::ParameterTable::CheckConsistency(scene);
@@ -55,12 +55,12 @@ int main(int argc, char** argv) {
                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
   app.add_option("--prefix", options.prefix, "channel prefix, so several servers share a bus")
       ->capture_default_str();
-  app.add_option("--scene", options.scene,
-                 "a preset (breeze, calm, gale, hanging) or a scene file (.toml)")
+  app.add_option("--scene", options.scene, "a preset (breeze, calm, gale, hanging) or a scene file (.toml)")
       ->capture_default_str();
   app.add_option("--set", options.assignments, "override a parameter: NAME=VALUE (repeatable)");
   app.add_flag("--fast", options.server.fast, "step as fast as possible instead of in real time");
-  app.add_option("--duration", options.server.duration, "stop after this many simulated seconds (0: run until stopped)")
+  app.add_option("--duration", options.server.duration,
+                 "stop after this many simulated seconds (0: run until stopped)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))

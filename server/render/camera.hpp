@@ -12,14 +12,14 @@
 namespace flagsim::render {
 
 struct Camera {
-  Eigen::Vector3d eye{2.6, 1.9, 4.4};     ///< m, world frame
-  Eigen::Vector3d target{0.8, 2.2, 0.0};  ///< m, the point looked at
-  Eigen::Vector3d up{0, 1, 0};            ///< world up
-  double fov_y = 0.70;                    ///< rad, vertical field of view (about 40 degrees)
-  double near_plane = 0.05;               ///< m
-  double far_plane = 100.0;               ///< m
-  int width = 1280;                       ///< px
-  int height = 720;                       ///< px
+  Eigen::Vector3d eye{2.6, 1.9, 4.4};                   ///< m, world frame
+  Eigen::Vector3d target{0.8, 2.2, 0.0};                ///< m, the point looked at
+  Eigen::Vector3d up{0, 1, 0};                          ///< world up
+  double fov_y = 0.70;                                  ///< rad, vertical field of view (about 40 degrees)
+  double near_plane = 0.05;                             ///< m
+  double far_plane = 100.0;                             ///< m
+  int width = 1280;                                     ///< px
+  int height = 720;                                     ///< px
   Eigen::Affine3d scene = Eigen::Affine3d::Identity();  ///< the seed's transforms of the world
 
   Eigen::Matrix4d View() const;        ///< world -> camera (camera looks down -z)

@@ -9,16 +9,26 @@
 namespace flagsim::render {
 
 struct CameraMove {
-  enum Operation { kRotateX = 1, kRotateY, kRotateZ, kTranslate, kScale, kOrbit, kLookAt, kSetImageSize, kReset };
+  enum Operation {
+    kRotateX = 1,
+    kRotateY,
+    kRotateZ,
+    kTranslate,
+    kScale,
+    kOrbit,
+    kLookAt,
+    kSetImageSize,
+    kReset
+  };
   int operation = 0;
-  double angle = 0;           ///< rad: rotations; orbit azimuth
-  double angle2 = 0;          ///< rad: orbit elevation
+  double angle = 0;                                  ///< rad: rotations; orbit azimuth
+  double angle2 = 0;                                 ///< rad: orbit elevation
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();  ///< m: translation, scale centre, look-at point
-  double factor = 1;          ///< scale
-  int width = 0, height = 0;  ///< px, image size
+  double factor = 1;                                 ///< scale
+  int width = 0, height = 0;                         ///< px, image size
 
   static constexpr double kMaxAngle = 6.283185307179586;  ///< rad, one turn
-  static constexpr double kMaxDistance = 1000;             ///< m
+  static constexpr double kMaxDistance = 1000;            ///< m
   static constexpr double kMinFactor = 0.01, kMaxFactor = 100;
   static constexpr int kMinSize = 16, kMaxWidth = 3840, kMaxHeight = 2160;  ///< px
 };

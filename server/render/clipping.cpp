@@ -10,24 +10,36 @@ namespace {
 constexpr int kPlanes = 6;
 float Distance(int plane, const Eigen::Vector4f& v) {
   switch (plane) {
-    case 0: return v.z() + v.w();                    // near: z >= -w
-    case 1: return v.w() - v.z();                    // far: z <= w
-    case 2: return kGuardBand * v.w() + v.x();       // left
-    case 3: return kGuardBand * v.w() - v.x();       // right
-    case 4: return kGuardBand * v.w() + v.y();       // bottom
-    default: return kGuardBand * v.w() - v.y();      // top
+    case 0:
+      return v.z() + v.w();  // near: z >= -w
+    case 1:
+      return v.w() - v.z();  // far: z <= w
+    case 2:
+      return kGuardBand * v.w() + v.x();  // left
+    case 3:
+      return kGuardBand * v.w() - v.x();  // right
+    case 4:
+      return kGuardBand * v.w() + v.y();  // bottom
+    default:
+      return kGuardBand * v.w() - v.y();  // top
   }
 }
 
 /// Outside the visible frustum (not the guard band) on `plane`'s side: for rejection.
 bool OutsideView(int plane, const Eigen::Vector4f& v) {
   switch (plane) {
-    case 0: return v.z() < -v.w();
-    case 1: return v.z() > v.w();
-    case 2: return v.x() < -v.w();
-    case 3: return v.x() > v.w();
-    case 4: return v.y() < -v.w();
-    default: return v.y() > v.w();
+    case 0:
+      return v.z() < -v.w();
+    case 1:
+      return v.z() > v.w();
+    case 2:
+      return v.x() < -v.w();
+    case 3:
+      return v.x() > v.w();
+    case 4:
+      return v.y() < -v.w();
+    default:
+      return v.y() > v.w();
   }
 }
 
@@ -73,7 +85,8 @@ ClipTest ClassifyTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVe
   return crossing ? ClipTest::kCrossing : ClipTest::kInside;
 }
 
-void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c, std::vector<ClipVertex>* out) {
+void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
+                  std::vector<ClipVertex>* out) {
   Polygon polygon = {a, b, c};
   for (int plane = 0; plane < kPlanes && polygon.size() >= 3; ++plane) polygon = ClipAgainst(polygon, plane);
   for (size_t i = 2; i < polygon.size(); ++i) {

@@ -10,7 +10,7 @@
 namespace flagsim::render {
 
 constexpr float kGuardBand = 4.0f;  ///< in units of the half-screen: x_ndc, y_ndc in [-4, 4]
-constexpr int kClipChannels = 16;    ///< attributes carried through clipping
+constexpr int kClipChannels = 16;   ///< attributes carried through clipping
 
 /// A vertex after the vertex stage: where it is in clip space, and what may be interpolated.
 struct ClipVertex {
@@ -25,7 +25,8 @@ ClipTest ClassifyTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVe
 /// Clips triangle (a, b, c) and appends the resulting polygon's fan of triangles to `out`
 /// (three vertices per triangle, orientation kept). Each intersection is computed from the
 /// inside vertex towards the outside one, so two triangles sharing an edge get the same point.
-void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c, std::vector<ClipVertex>* out);
+void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
+                  std::vector<ClipVertex>* out);
 
 /// Clips the segment a-b to the same volume (parametric, Liang-Barsky in clip space); false if
 /// nothing of it is left.

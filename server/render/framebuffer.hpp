@@ -7,10 +7,10 @@
 namespace flagsim::render {
 
 struct Framebuffer {
-  int width = 0;               ///< px
-  int height = 0;              ///< px
-  std::vector<uint8_t> rgb;    ///< 3 bytes per pixel, row-major, top row first
-  std::vector<float> depth;    ///< window depth per pixel, 0 (near) .. 1 (far)
+  int width = 0;             ///< px
+  int height = 0;            ///< px
+  std::vector<uint8_t> rgb;  ///< 3 bytes per pixel, row-major, top row first
+  std::vector<float> depth;  ///< window depth per pixel, 0 (near) .. 1 (far)
 
   void Resize(int new_width, int new_height) {
     width = new_width;

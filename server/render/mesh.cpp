@@ -37,7 +37,9 @@ void UpdateFlagMesh(int cols, int rows, const float* x, const float* y, const fl
   // n = (P(r, c+1) - P(r, c-1)) x (P(r-1, c) - P(r+1, c)), one-sided at the edges: +z at rest.
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
-      const auto at = [&](int rr, int cc) -> const Eigen::Vector3f& { return mesh->positions[rr * cols + cc]; };
+      const auto at = [&](int rr, int cc) -> const Eigen::Vector3f& {
+        return mesh->positions[rr * cols + cc];
+      };
       const Eigen::Vector3f along = at(r, c + 1 < cols ? c + 1 : c) - at(r, c > 0 ? c - 1 : c);
       const Eigen::Vector3f up = at(r > 0 ? r - 1 : r, c) - at(r + 1 < rows ? r + 1 : r, c);
       const Eigen::Vector3f normal = along.cross(up);

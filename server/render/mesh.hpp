@@ -13,19 +13,19 @@
 namespace flagsim::render {
 
 struct Mesh {
-  std::vector<Eigen::Vector3f> positions;  ///< m, world frame
-  std::vector<Eigen::Vector3f> normals;    ///< unit, on the front side
-  std::vector<Eigen::Vector2f> uvs;        ///< pattern coordinates
+  std::vector<Eigen::Vector3f> positions;          ///< m, world frame
+  std::vector<Eigen::Vector3f> normals;            ///< unit, on the front side
+  std::vector<Eigen::Vector2f> uvs;                ///< pattern coordinates
   std::vector<std::array<uint32_t, 3>> triangles;  ///< counter-clockwise seen from the front
   std::vector<std::array<uint32_t, 2>> edges;      ///< wireframe: every edge once, first -> second
-  int front_material = 0;   ///< index into RenderScene::materials
-  int back_material = -1;   ///< -1: back faces are culled
+  int front_material = 0;                          ///< index into RenderScene::materials
+  int back_material = -1;                          ///< -1: back faces are culled
 };
 
 struct RenderScene {
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
-  Texture pattern;                       ///< for materials with `patterned`
+  Texture pattern;  ///< for materials with `patterned`
   Lighting lighting;
   Eigen::Vector3f sky_top{0.33f, 0.55f, 0.85f};      ///< background at the image's top, RGB 0..1
   Eigen::Vector3f sky_horizon{0.80f, 0.87f, 0.94f};  ///< background at its bottom

@@ -1,7 +1,7 @@
 #include "renderer.hpp"
 
-#include <algorithm>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -41,7 +41,8 @@ void ShadeFace(const RenderScene& scene, const Mesh& mesh, const Eigen::Vector3f
   const Eigen::Vector3f normal = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
   const Shade front = ShadePoint(scene.materials[mesh.front_material], scene.lighting, centre, normal, eye);
   Shade back;
-  if (mesh.back_material >= 0) back = ShadePoint(scene.materials[mesh.back_material], scene.lighting, centre, -normal, eye);
+  if (mesh.back_material >= 0)
+    back = ShadePoint(scene.materials[mesh.back_material], scene.lighting, centre, -normal, eye);
   for (int i = 0; i < 3; ++i) {
     PutShade(front, v[i].channels + kFrontBlock);
     PutShade(back, v[i].channels + kBackBlock);
@@ -112,9 +113,9 @@ void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip
       if (mode == ShadingMode::kGouraud) {
         PutShade(ShadePoint(scene.materials[mesh.front_material], scene.lighting, p, normal, eye_),
                  v.channels + kFrontBlock);
-        const Shade back = mesh.back_material >= 0
-                               ? ShadePoint(scene.materials[mesh.back_material], scene.lighting, p, -normal, eye_)
-                               : Shade{};
+        const Shade back = mesh.back_material >= 0 ? ShadePoint(scene.materials[mesh.back_material],
+                                                                scene.lighting, p, -normal, eye_)
+                                                   : Shade{};
         PutShade(back, v.channels + kBackBlock);
       } else {
         for (const int block : {kFrontBlock, kBackBlock}) {
@@ -129,14 +130,16 @@ void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip
 }
 
 // Triangles in fixed chunks (the same chunks at any thread count), concatenated in order.
-void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height, int threads) {
+void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height,
+                              int threads) {
   struct Work {
     int mesh, first, end;
   };
   std::vector<Work> work;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const int count = static_cast<int>(scene.meshes[m].triangles.size());
-    for (int first = 0; first < count; first += kChunk) work.push_back({int(m), first, std::min(count, first + kChunk)});
+    for (int first = 0; first < count; first += kChunk)
+      work.push_back({int(m), first, std::min(count, first + kChunk)});
   }
   chunks_.resize(work.size());
   const int items = static_cast<int>(work.size());
@@ -152,8 +155,11 @@ void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int wi
                          vertices[mesh.triangles[t][2]]};
       if (mode == ShadingMode::kFlat) ShadeFace(scene, mesh, eye_, v);
       switch (ClassifyTriangle(v[0], v[1], v[2])) {
-        case ClipTest::kOutside: break;
-        case ClipTest::kInside: SetupVisible(mesh, &v[0], &v[1], &v[2], width, height, &out); break;
+        case ClipTest::kOutside:
+          break;
+        case ClipTest::kInside:
+          SetupVisible(mesh, &v[0], &v[1], &v[2], width, height, &out);
+          break;
         case ClipTest::kCrossing:
           clipped.clear();
           ClipTriangle(v[0], v[1], v[2], &clipped);
@@ -190,7 +196,8 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height) {
       };
       to_pixel(a, &line.x0, &line.y0, &line.z0);
       to_pixel(b, &line.x1, &line.y1, &line.z1);
-      for (int k = 0; k < 3; ++k) line.rgb[k] = static_cast<uint8_t>(std::clamp(colour[k], 0.0f, 1.0f) * 255 + 0.5f);
+      for (int k = 0; k < 3; ++k)
+        line.rgb[k] = static_cast<uint8_t>(std::clamp(colour[k], 0.0f, 1.0f) * 255 + 0.5f);
       lines_.push_back(line);
     }
   }
@@ -204,7 +211,8 @@ void Renderer::BinStage(int width, int height, int tile_size) {
   line_bins_.resize(tiles);
   for (auto& bin : triangle_bins_) bin.clear();
   for (auto& bin : line_bins_) bin.clear();
-  const auto bin_box = [&](int x0, int y0, int x1, int y1, uint32_t index, std::vector<std::vector<uint32_t>>* bins) {
+  const auto bin_box = [&](int x0, int y0, int x1, int y1, uint32_t index,
+                           std::vector<std::vector<uint32_t>>* bins) {
     x0 = std::max(x0, 0);
     y0 = std::max(y0, 0);
     x1 = std::min(x1, width - 1);
@@ -221,11 +229,13 @@ void Renderer::BinStage(int width, int height, int tile_size) {
   }
   for (uint32_t i = 0; i < lines_.size(); ++i) {
     const LineSetup& l = lines_[i];
-    bin_box(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1), i, &line_bins_);
+    bin_box(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1), i,
+            &line_bins_);
   }
 }
 
-void Renderer::TileStage(const ShadeContext& context, const RenderOptions& options, Framebuffer* framebuffer) {
+void Renderer::TileStage(const ShadeContext& context, const RenderOptions& options,
+                         Framebuffer* framebuffer) {
   const int tiles = tiles_x_ * tiles_y_, size = options.tile_size;
 #pragma omp parallel num_threads(options.threads) if (options.threads > 1)
   {
@@ -249,7 +259,8 @@ void Renderer::TileStage(const ShadeContext& context, const RenderOptions& optio
       // Out to the image: colour rows, and depth if asked for.
       const int width = target.rect.x1 - target.rect.x0;
       for (int y = target.rect.y0; y < target.rect.y1; ++y) {
-        std::memcpy(framebuffer->Pixel(target.rect.x0, y), target.Pixel(target.rect.x0, y), size_t(width) * 3);
+        std::memcpy(framebuffer->Pixel(target.rect.x0, y), target.Pixel(target.rect.x0, y),
+                    size_t(width) * 3);
         if (options.keep_depth) {
           std::memcpy(&framebuffer->depth[size_t(y) * framebuffer->width + target.rect.x0],
                       target.Depth(target.rect.x0, y), size_t(width) * sizeof(float));

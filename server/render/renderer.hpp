@@ -28,7 +28,7 @@ namespace flagsim::render {
 struct RenderOptions {
   ShadingMode mode = ShadingMode::kGouraud;
   int threads = 1;
-  int tile_size = 64;  ///< px, square tiles (the stream's tiles too), 8 and up
+  int tile_size = 64;       ///< px, square tiles (the stream's tiles too), 8 and up
   bool keep_depth = false;  ///< also copy the depth buffer out (tiles keep it to themselves)
 };
 
@@ -50,13 +50,13 @@ class Renderer {
   void TileStage(const ShadeContext& context, const RenderOptions& options, Framebuffer* framebuffer);
 
   Eigen::Vector3f eye_;
-  std::vector<std::vector<ClipVertex>> vertices_;       ///< per mesh, per vertex
-  std::vector<std::vector<TriangleSetup>> chunks_;      ///< primitive stage output per chunk
-  std::vector<TriangleSetup> setups_;                   ///< all triangles, in order
+  std::vector<std::vector<ClipVertex>> vertices_;   ///< per mesh, per vertex
+  std::vector<std::vector<TriangleSetup>> chunks_;  ///< primitive stage output per chunk
+  std::vector<TriangleSetup> setups_;               ///< all triangles, in order
   std::vector<LineSetup> lines_;
   int tiles_x_ = 0, tiles_y_ = 0;
-  std::vector<std::vector<uint32_t>> triangle_bins_;    ///< per tile: indices into setups_
-  std::vector<std::vector<uint32_t>> line_bins_;        ///< per tile: indices into lines_
+  std::vector<std::vector<uint32_t>> triangle_bins_;  ///< per tile: indices into setups_
+  std::vector<std::vector<uint32_t>> line_bins_;      ///< per tile: indices into lines_
 };
 
 }  // namespace flagsim::render

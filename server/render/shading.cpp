@@ -16,7 +16,8 @@ Shade ShadePoint(const Material& material, const Lighting& lighting, const Eigen
     if (lambert <= 0) continue;
     shade.diffuse += material.diffuse * lambert * light.colour;
     const float highlight = n.dot((to_light + to_eye).normalized());
-    if (highlight > 0) shade.specular += material.specular * std::pow(highlight, material.shininess) * light.colour;
+    if (highlight > 0)
+      shade.specular += material.specular * std::pow(highlight, material.shininess) * light.colour;
   }
   return shade;
 }

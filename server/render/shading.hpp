@@ -16,18 +16,18 @@ namespace flagsim::render {
 
 struct Material {
   Eigen::Vector3f colour{0.8f, 0.8f, 0.8f};  ///< linear RGB, 0..1; multiplies the pattern
-  bool patterned = false;    ///< the flag's pattern (texture) applies
-  float ambient = 0.25f;     ///< ka
-  float diffuse = 0.8f;      ///< kd
-  float specular = 0.2f;     ///< ks
-  float shininess = 24.0f;   ///< Blinn-Phong exponent
+  bool patterned = false;                    ///< the flag's pattern (texture) applies
+  float ambient = 0.25f;                     ///< ka
+  float diffuse = 0.8f;                      ///< kd
+  float specular = 0.2f;                     ///< ks
+  float shininess = 24.0f;                   ///< Blinn-Phong exponent
 };
 
 struct Light {
   enum Kind { kDirectional, kPoint };
   Kind kind = kDirectional;
-  Eigen::Vector3f vector{0, 1, 0};    ///< directional: towards the light; point: position, m
-  Eigen::Vector3f colour{1, 1, 1};    ///< linear RGB intensity
+  Eigen::Vector3f vector{0, 1, 0};  ///< directional: towards the light; point: position, m
+  Eigen::Vector3f colour{1, 1, 1};  ///< linear RGB intensity
 };
 
 struct Lighting {

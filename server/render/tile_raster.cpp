@@ -108,7 +108,8 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy
     for (int k = 0; k < kPlaneChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
     Eigen::Vector3f normal = Eigen::Vector3f(c[3], c[4], c[5]).normalized();
     if (t.back_facing) normal = -normal;
-    const Shade shade = ShadePoint(material, scene.lighting, Eigen::Vector3f(c[0], c[1], c[2]), normal, context.eye);
+    const Shade shade =
+        ShadePoint(material, scene.lighting, Eigen::Vector3f(c[0], c[1], c[2]), normal, context.eye);
     Eigen::Vector3f base = material.colour;
     if (material.patterned) {
       const uint8_t* texel = scene.pattern.Sample(c[6], c[7]);

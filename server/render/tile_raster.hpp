@@ -22,14 +22,18 @@ struct TileRect {
 /// which stays in cache while the tile is drawn; tests may point it into a Framebuffer.
 struct TileTarget {
   TileRect rect;
-  int image_height = 0;         ///< px, for the sky's gradient
+  int image_height = 0;  ///< px, for the sky's gradient
   uint8_t* rgb = nullptr;
-  size_t rgb_stride = 0;        ///< bytes from one row to the next
+  size_t rgb_stride = 0;  ///< bytes from one row to the next
   float* depth = nullptr;
-  size_t depth_stride = 0;      ///< floats from one row to the next
+  size_t depth_stride = 0;  ///< floats from one row to the next
 
-  uint8_t* Pixel(int x, int y) const { return rgb + size_t(y - rect.y0) * rgb_stride + size_t(x - rect.x0) * 3; }
-  float* Depth(int x, int y) const { return depth + size_t(y - rect.y0) * depth_stride + size_t(x - rect.x0); }
+  uint8_t* Pixel(int x, int y) const {
+    return rgb + size_t(y - rect.y0) * rgb_stride + size_t(x - rect.x0) * 3;
+  }
+  float* Depth(int x, int y) const {
+    return depth + size_t(y - rect.y0) * depth_stride + size_t(x - rect.x0);
+  }
 
   /// The part `rect` of a whole framebuffer.
   static TileTarget Into(Framebuffer* framebuffer, const TileRect& rect) {

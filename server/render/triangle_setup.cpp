@@ -119,11 +119,11 @@ bool RowSpans::Span(int* first, int* last) const {
   int64_t low = min_x_, high = max_x_;
   for (const Edge& edge : edges_) {
     if (edge.sign > 0) {
-      high = std::min(high, edge.quotient);      // px <= floor(K / m)
+      high = std::min(high, edge.quotient);  // px <= floor(K / m)
     } else if (edge.sign < 0) {
-      low = std::max(low, -edge.quotient);       // px >= -floor(K / |m|)
+      low = std::max(low, -edge.quotient);  // px >= -floor(K / |m|)
     } else if (edge.quotient < 0) {
-      return false;                              // a horizontal edge with the row outside
+      return false;  // a horizontal edge with the row outside
     }
   }
   *first = int(low);

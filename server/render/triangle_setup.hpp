@@ -16,7 +16,7 @@ namespace flagsim::render {
 
 constexpr int kSubpixelBits = 8;
 constexpr int64_t kSubpixels = int64_t(1) << kSubpixelBits;  ///< per pixel
-constexpr int kPlaneChannels = 8;  ///< attributes interpolated per pixel
+constexpr int kPlaneChannels = 8;                            ///< attributes interpolated per pixel
 
 /// a(x, y) = origin + dx (x - x0) + dy (y - y0), with (x0, y0) the centre of the box's first pixel.
 struct Plane {
@@ -25,9 +25,9 @@ struct Plane {
 
 /// One projected vertex: window position and what is interpolated.
 struct ScreenVertex {
-  float x = 0, y = 0;    ///< px from the top-left corner of the image, y down
-  float z = 0;           ///< window depth, 0 (near) .. 1 (far)
-  float inverse_w = 0;   ///< 1 / w_clip, for perspective-correct interpolation
+  float x = 0, y = 0;   ///< px from the top-left corner of the image, y down
+  float z = 0;          ///< window depth, 0 (near) .. 1 (far)
+  float inverse_w = 0;  ///< 1 / w_clip, for perspective-correct interpolation
   float channels[kPlaneChannels] = {};
 };
 
@@ -35,12 +35,12 @@ struct TriangleSetup {
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  ///< px, inclusive, inside the image
   // Edge i runs from vertex i to vertex i + 1, in subpixels: E(P) = dx (Py - y) - dy (Px - x).
   int64_t edge_x[3] = {}, edge_y[3] = {}, edge_dx[3] = {}, edge_dy[3] = {};
-  int64_t edge_bias[3] = {};  ///< 0 for top and left edges, -1 for the others
-  Plane depth;                ///< window depth, linear in the image
-  Plane inverse_w;            ///< 1 / w
+  int64_t edge_bias[3] = {};       ///< 0 for top and left edges, -1 for the others
+  Plane depth;                     ///< window depth, linear in the image
+  Plane inverse_w;                 ///< 1 / w
   Plane channels[kPlaneChannels];  ///< channel / w: divide by inverse_w for the channel
-  bool back_facing = false;   ///< the vertices run clockwise as seen (after the y flip: counter)
-  int material = 0;           ///< index into the scene's materials
+  bool back_facing = false;        ///< the vertices run clockwise as seen (after the y flip: counter)
+  int material = 0;                ///< index into the scene's materials
 };
 
 /// Snaps and sets up the triangle; false if it covers no pixel centre of a width x height

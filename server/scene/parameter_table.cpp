@@ -13,8 +13,8 @@ using sim::SimParams;
 
 /// A parameter stored in field `field` of member `group` of the scene.
 template <class Group, class Field>
-Parameter Make(std::string name, std::string unit, ParameterKind kind, double min_value,
-               double max_value, Group Scene::*group, Field Group::*field, std::string description) {
+Parameter Make(std::string name, std::string unit, ParameterKind kind, double min_value, double max_value,
+               Group Scene::*group, Field Group::*field, std::string description) {
   Parameter parameter;
   parameter.name = std::move(name);
   parameter.unit = std::move(unit);
@@ -36,14 +36,14 @@ Parameter Make(std::string name, std::string unit, ParameterKind kind, double mi
 template <class Field>
 Parameter Real(std::string name, std::string unit, double min_value, double max_value,
                Field SimParams::*field, std::string description) {
-  return Make(std::move(name), std::move(unit), ParameterKind::kReal, min_value, max_value,
-              &Scene::sim, field, std::move(description));
+  return Make(std::move(name), std::move(unit), ParameterKind::kReal, min_value, max_value, &Scene::sim,
+              field, std::move(description));
 }
 
 Parameter Integer(std::string name, double min_value, double max_value, int SimParams::*field,
                   std::string description) {
-  return Make(std::move(name), "", ParameterKind::kInteger, min_value, max_value, &Scene::sim,
-              field, std::move(description));
+  return Make(std::move(name), "", ParameterKind::kInteger, min_value, max_value, &Scene::sim, field,
+              std::move(description));
 }
 
 std::string FormatNumber(double value) {
@@ -99,27 +99,31 @@ std::string Parse(const Parameter& parameter, const std::string& text, double* v
 
 std::string Parameter::Format(double value) const {
   switch (kind) {
-    case ParameterKind::kBoolean: return value != 0 ? "true" : "false";
+    case ParameterKind::kBoolean:
+      return value != 0 ? "true" : "false";
     case ParameterKind::kChoice: {
       const auto index = static_cast<size_t>(value);
       return index < choices.size() ? choices[index] : FormatNumber(value);
     }
     case ParameterKind::kInteger:
-    case ParameterKind::kReal: break;
+    case ParameterKind::kReal:
+      break;
   }
   return FormatNumber(value);
 }
 
 std::string Parameter::AllowedText() const {
   switch (kind) {
-    case ParameterKind::kBoolean: return "true or false";
+    case ParameterKind::kBoolean:
+      return "true or false";
     case ParameterKind::kChoice: {
       std::string text = "one of:";
       for (size_t i = 0; i < choices.size(); ++i) text += (i ? ", " : " ") + choices[i];
       return text;
     }
     case ParameterKind::kInteger:
-    case ParameterKind::kReal: break;
+    case ParameterKind::kReal:
+      break;
   }
   return FormatNumber(min_value) + " .. " + FormatNumber(max_value) + (unit.empty() ? "" : " " + unit);
 }
@@ -151,8 +155,8 @@ ParameterTable::ParameterTable() {
       Make("integrator", "", ParameterKind::kChoice, 0, double(sim::IntegratorNames().size() - 1),
            &Scene::sim, &SimParams::integrator, "time integrator"),
       Integer("threads", 1, 64, &SimParams::threads, "worker threads for forces and integration"),
-      Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, &Scene::service,
-           &ServiceSettings::state_rate, "STATE messages per second of simulated time"),
+      Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, &Scene::service, &ServiceSettings::state_rate,
+           "STATE messages per second of simulated time"),
       Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120, &Scene::service, &ServiceSettings::frame_rate,
            "frames drawn and streamed per second of simulated time; 0: none"),
       Make("shading", "", ParameterKind::kChoice, 0, double(render::ShadingModeNames().size() - 1),
@@ -213,8 +217,8 @@ std::string ParameterTable::CheckWind(const sim::WindSettings& wind) {
     speed_squared += wind.velocity[k] * wind.velocity[k];
   }
   if (std::sqrt(speed_squared) > kMaxWindSpeed) {
-    return "velocity: speed " + FormatNumber(std::sqrt(speed_squared)) + " m/s is out of range; allowed 0 .. " +
-           FormatNumber(kMaxWindSpeed) + " m/s";
+    return "velocity: speed " + FormatNumber(std::sqrt(speed_squared)) +
+           " m/s is out of range; allowed 0 .. " + FormatNumber(kMaxWindSpeed) + " m/s";
   }
   if (!(wind.gust >= 0 && wind.gust <= kMaxGust)) {
     return "gust: " + FormatNumber(wind.gust) + " is out of range; allowed 0 .. " + FormatNumber(kMaxGust);

@@ -14,10 +14,10 @@ namespace flagsim {
 enum class ParameterKind { kReal, kInteger, kBoolean, kChoice };
 
 struct Parameter {
-  std::string name;         ///< e.g. "stiffness"
-  std::string unit;         ///< SI unit, "" for pure numbers, names and switches
+  std::string name;  ///< e.g. "stiffness"
+  std::string unit;  ///< SI unit, "" for pure numbers, names and switches
   ParameterKind kind = ParameterKind::kReal;
-  double min_value = 0;     ///< inclusive; for kChoice an index range
+  double min_value = 0;  ///< inclusive; for kChoice an index range
   double max_value = 0;
   std::vector<std::string> choices;  ///< kChoice: the names, value = index
   std::string description;

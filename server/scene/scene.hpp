@@ -21,11 +21,11 @@ struct ServiceSettings {
 struct Scene {
   std::string name = "breeze";
   std::string description = "A steady breeze with light gusts.";
-  uint64_t seed = 1;           ///< gust noise seed
+  uint64_t seed = 1;  ///< gust noise seed
   sim::SimParams sim;
   sim::WindSettings wind;
   ServiceSettings service;
-  render::Camera camera;       ///< where frames are seen from, and their size
+  render::Camera camera;  ///< where frames are seen from, and their size
 };
 
 }  // namespace flagsim

@@ -73,7 +73,8 @@ void ReadWind(const toml::table& table, const std::string& source, Scene* scene)
 
 Eigen::Vector3d Vector(const toml::node& node, const std::string& what, const std::string& source) {
   const toml::array* array = node.as_array();
-  if (array == nullptr || array->size() != 3) throw SceneError(Where(source, node) + what + " must be [x, y, z] in m");
+  if (array == nullptr || array->size() != 3)
+    throw SceneError(Where(source, node) + what + " must be [x, y, z] in m");
   Eigen::Vector3d vector;
   for (int k = 0; k < 3; ++k) vector[k] = Number(*array->get(k), what, source);
   if (!vector.allFinite() || vector.norm() > render::CameraMove::kMaxDistance) {
@@ -85,7 +86,8 @@ Eigen::Vector3d Vector(const toml::node& node, const std::string& what, const st
 int Pixels(const toml::node& node, const std::string& what, int most, const std::string& source) {
   const auto value = node.value<int64_t>();
   if (!value || *value < render::CameraMove::kMinSize || *value > most) {
-    throw SceneError(Where(source, node) + what + " must be an integer, 16 .. " + std::to_string(most) + " px");
+    throw SceneError(Where(source, node) + what + " must be an integer, 16 .. " + std::to_string(most) +
+                     " px");
   }
   return static_cast<int>(*value);
 }
@@ -100,7 +102,8 @@ void ReadCamera(const toml::table& table, const std::string& source, Scene* scen
       camera.target = Vector(node, "camera.target", source);
     } else if (name == "fov") {
       const double degrees = Number(node, "camera.fov", source);
-      if (!(degrees >= 10 && degrees <= 120)) throw SceneError(Where(source, node) + "camera.fov: allowed 10 .. 120 degrees");
+      if (!(degrees >= 10 && degrees <= 120))
+        throw SceneError(Where(source, node) + "camera.fov: allowed 10 .. 120 degrees");
       camera.fov_y = degrees * M_PI / 180;
     } else if (name == "width") {
       camera.width = Pixels(node, "camera.width", render::CameraMove::kMaxWidth, source);
@@ -111,7 +114,8 @@ void ReadCamera(const toml::table& table, const std::string& source, Scene* scen
                        "; known: eye, target, fov, width, height");
     }
   }
-  if ((camera.target - camera.eye).norm() < 1e-3) throw SceneError(source + ": camera.eye and camera.target coincide");
+  if ((camera.target - camera.eye).norm() < 1e-3)
+    throw SceneError(source + ": camera.eye and camera.target coincide");
 }
 
 const toml::table& Table(const toml::node& node, const std::string& what, const std::string& source) {
@@ -178,7 +182,8 @@ Scene LoadScene(const std::string& preset_or_path) {
   if (!file) {
     std::string presets;
     for (const std::string& name : PresetNames()) presets += (presets.empty() ? "" : ", ") + name;
-    throw SceneError("no scene file '" + preset_or_path + "' and no preset of that name; presets: " + presets);
+    throw SceneError("no scene file '" + preset_or_path +
+                     "' and no preset of that name; presets: " + presets);
   }
   std::ostringstream text;
   text << file.rdbuf();

@@ -7,8 +7,8 @@
 
 #include <cstdint>
 #include <map>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include "bus.hpp"
 #include "channels.hpp"

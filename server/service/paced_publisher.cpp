@@ -44,7 +44,8 @@ void PacedPublisher::Run() {
     lock.unlock();
     while (true) {
       const double now = MonotonicSeconds();
-      message_tokens = std::min(message_tokens + (now - last) * kMessagesPerSecond, kMessagesPerSecond * kBurstSeconds);
+      message_tokens =
+          std::min(message_tokens + (now - last) * kMessagesPerSecond, kMessagesPerSecond * kBurstSeconds);
       byte_tokens = std::min(byte_tokens + (now - last) * kBytesPerSecond, kBytesPerSecond * kBurstSeconds);
       last = now;
       if (message_tokens >= 1 && byte_tokens >= double(item.bytes.size())) break;

@@ -137,7 +137,9 @@ void Server::FrameDue() {
   stats_.tile_bytes += double(frame.encoded_bytes);
 }
 
-void Server::PublishParams() { bus_.Publish(channels_.params, MakeParamsMessage(session_.scene(), UnixMicros())); }
+void Server::PublishParams() {
+  bus_.Publish(channels_.params, MakeParamsMessage(session_.scene(), UnixMicros()));
+}
 
 void Server::PublishStatus(double now) {
   StatusWindow window;

@@ -26,8 +26,8 @@
 namespace flagsim {
 
 struct ServerOptions {
-  bool fast = false;        ///< step as fast as possible instead of in real time
-  double duration = 0;      ///< s of simulated time to run, 0 = until stopped
+  bool fast = false;    ///< step as fast as possible instead of in real time
+  double duration = 0;  ///< s of simulated time to run, 0 = until stopped
 };
 
 class Server {
@@ -64,11 +64,11 @@ class Server {
   TileStream tiles_;
   PacedPublisher paced_;
 
-  double start_wall_ = -1;        ///< s, monotonic, first Tick
-  double accumulator_ = 0;        ///< s of wall time owed to the simulation
+  double start_wall_ = -1;  ///< s, monotonic, first Tick
+  double accumulator_ = 0;  ///< s of wall time owed to the simulation
   double last_tick_ = -1;
-  double next_state_time_ = 0;    ///< s of simulated time when STATE is next due
-  double next_frame_time_ = 0;    ///< s of simulated time when a frame is next due
+  double next_state_time_ = 0;  ///< s of simulated time when STATE is next due
+  double next_frame_time_ = 0;  ///< s of simulated time when a frame is next due
   bool frame_due_ = true;
   double next_second_ = 0;        ///< s, monotonic, when PARAMS and STATUS are next due
   double window_sim_start_ = 0;   ///< simulated time at the last STATUS

@@ -14,14 +14,14 @@ struct ServerStats {
 
   // Since the last STATUS (reset each time one is published).
   int64_t steps = 0;
-  double step_seconds = 0;        ///< wall time spent stepping
+  double step_seconds = 0;  ///< wall time spent stepping
   int64_t states_published = 0;
-  double publish_seconds = 0;     ///< wall time spent building and publishing STATE
+  double publish_seconds = 0;  ///< wall time spent building and publishing STATE
   int64_t frames_published = 0;
-  double render_seconds = 0;      ///< wall time spent drawing frames
-  double encode_seconds = 0;      ///< wall time spent hashing and compressing tiles
+  double render_seconds = 0;  ///< wall time spent drawing frames
+  double encode_seconds = 0;  ///< wall time spent hashing and compressing tiles
   int64_t tiles_published = 0;
-  double tile_bytes = 0;          ///< compressed tile payloads
+  double tile_bytes = 0;  ///< compressed tile payloads
 
   void ResetWindow() {
     render_seconds = 0;

@@ -20,8 +20,8 @@ std::string Session::ApplyWind(const sim::WindSettings& wind) {
 
 std::string Session::ApplyParams(const ParamChange& change) {
   if (change.assignments.size() > kMaxAssignments) {
-    return "num_assignments: " + std::to_string(change.assignments.size()) + " is out of range; allowed 0 .. " +
-           std::to_string(kMaxAssignments);
+    return "num_assignments: " + std::to_string(change.assignments.size()) +
+           " is out of range; allowed 0 .. " + std::to_string(kMaxAssignments);
   }
   // Work on a copy; the session changes only if every assignment and the whole are valid.
   Scene next = change.reset_to_scene ? initial_ : scene_;

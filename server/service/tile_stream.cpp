@@ -17,8 +17,8 @@ struct ZstdContextDeleter {
 tile_t EncodeTile(const std::vector<uint8_t>& pixels, ZSTD_CCtx* context) {
   tile_t tile{};
   std::vector<uint8_t> compressed(ZSTD_compressBound(pixels.size()));
-  const size_t size = ZSTD_compressCCtx(context, compressed.data(), compressed.size(), pixels.data(), pixels.size(),
-                                        TileStream::kCompressionLevel);
+  const size_t size = ZSTD_compressCCtx(context, compressed.data(), compressed.size(), pixels.data(),
+                                        pixels.size(), TileStream::kCompressionLevel);
   if (!ZSTD_isError(size) && size < pixels.size()) {
     compressed.resize(size);
     tile.encoding = tile_t::ZSTD_RGB8;

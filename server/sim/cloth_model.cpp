@@ -44,7 +44,7 @@ ClothModel<Real> BuildClothModel(const SimParams& params) {
 
   const double diagonal = std::hypot(dx, dy);
   model.families = {
-      {SpringKind::kStructural, 0, 1, Real(dx), 0, 0}, {SpringKind::kStructural, 1, 0, Real(dy), 0, 0},
+      {SpringKind::kStructural, 0, 1, Real(dx), 0, 0},  {SpringKind::kStructural, 1, 0, Real(dy), 0, 0},
       {SpringKind::kShear, 1, 1, Real(diagonal), 0, 0}, {SpringKind::kShear, 1, -1, Real(diagonal), 0, 0},
       {SpringKind::kBend, 0, 2, Real(2 * dx), 0, 0},    {SpringKind::kBend, 2, 0, Real(2 * dy), 0, 0}};
   SetSpringConstants(params, &model);

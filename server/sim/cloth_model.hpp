@@ -24,11 +24,11 @@ enum class SpringKind { kStructural, kShear, kBend };
 template <typename Real>
 struct SpringFamily {
   SpringKind kind = SpringKind::kStructural;
-  int dr = 0;                ///< row offset of the far node (>= 0)
-  int dc = 0;                ///< column offset of the far node
-  Real rest_length = 0;      ///< m
-  Real stiffness = 0;        ///< N/m, per spring
-  Real damping = 0;          ///< N s/m, per spring
+  int dr = 0;            ///< row offset of the far node (>= 0)
+  int dc = 0;            ///< column offset of the far node
+  Real rest_length = 0;  ///< m
+  Real stiffness = 0;    ///< N/m, per spring
+  Real damping = 0;      ///< N s/m, per spring
 
   int first_col() const { return dc < 0 ? -dc : 0; }  ///< columns whose far node exists
   int end_col(int cols) const { return dc > 0 ? cols - dc : cols; }
@@ -38,15 +38,15 @@ template <typename Real>
 struct ClothModel {
   int cols = 0;
   int rows = 0;
-  Real dx = 0;                    ///< m, rest spacing along rows
-  Real dy = 0;                    ///< m, rest spacing down columns
+  Real dx = 0;                       ///< m, rest spacing along rows
+  Real dy = 0;                       ///< m, rest spacing down columns
   std::array<double, 3> pole_top{};  ///< m, world frame; the pole runs from (0,0,0) to here
 
   /// Structural (0,1) (1,0); shear (1,1) (1,-1); bend (0,2) (2,0).
   std::vector<SpringFamily<Real>> families;
 
-  std::vector<Real> mass;           ///< kg per node: the flag's mass shared by area
-  std::vector<Real> inverse_mass;   ///< 1/kg per node; 0 for nodes pinned to the pole
+  std::vector<Real> mass;          ///< kg per node: the flag's mass shared by area
+  std::vector<Real> inverse_mass;  ///< 1/kg per node; 0 for nodes pinned to the pole
 
   /// Rest positions, m: where the flag starts and where pinned nodes stay.
   std::vector<Real> rest_x, rest_y, rest_z;

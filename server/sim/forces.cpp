@@ -26,7 +26,8 @@ void SpringKernel(const Real* __restrict x, const Real* __restrict y, const Real
     // A zero-length spring has d = 0 and so no force; the floor only keeps 1/|d| finite.
     const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortest));
     const Real closing = (vx[b] - vx[a]) * dx + (vy[b] - vy[a]) * dy + (vz[b] - vz[a]) * dz;
-    const Real scale = k * (length_squared * inverse - rest) * inverse + damping * closing * inverse * inverse;
+    const Real scale =
+        k * (length_squared * inverse - rest) * inverse + damping * closing * inverse * inverse;
     fx[a] = scale * dx;
     fy[a] = scale * dy;
     fz[a] = scale * dz;
@@ -40,8 +41,8 @@ template <typename Real>
 void WindKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
                 const Real* __restrict vx, const Real* __restrict vy, const Real* __restrict vz,
                 const Real* __restrict wx, const Real* __restrict wy, const Real* __restrict wz,
-                Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, int p0, int q0, int s0,
-                int n, Real share, Real relative) {
+                Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, int p0, int q0, int s0, int n,
+                Real share, Real relative) {
   const Real third = Real(1) / Real(3);
   for (int i = 0; i < n; ++i) {
     const int p = p0 + i, q = q0 + i, s = s0 + i;
@@ -104,8 +105,7 @@ void ForceEvaluator<Real>::SampleWind(const ClothModel<Real>& model, const WindF
 
 // Every spring whose first node is in row r, family by family.
 template <typename Real>
-void ForceEvaluator<Real>::SpringRow(const ClothModel<Real>& model, const ClothState<Real>& state,
-                                     int r) {
+void ForceEvaluator<Real>::SpringRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r) {
   for (size_t f = 0; f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];
     if (r + family.dr >= model.rows) continue;
@@ -113,8 +113,7 @@ void ForceEvaluator<Real>::SpringRow(const ClothModel<Real>& model, const ClothS
     SpringKernel(state.x.data(), state.y.data(), state.z.data(), state.vx.data(), state.vy.data(),
                  state.vz.data(), out.x.data(), out.y.data(), out.z.data(),
                  model.index(r, family.first_col()), model.index(r, family.end_col(model.cols)),
-                 family.dr * model.cols + family.dc, family.stiffness, family.damping,
-                 family.rest_length);
+                 family.dr * model.cols + family.dc, family.stiffness, family.damping, family.rest_length);
   }
 }
 
@@ -132,9 +131,9 @@ void ForceEvaluator<Real>::WindRow(const ClothModel<Real>& model, const SimParam
   } triangles[2] = {{&upper_, top, bottom, top + 1}, {&lower_, bottom, bottom + 1, top + 1}};
   for (const auto& triangle : triangles) {
     WindKernel(state.x.data(), state.y.data(), state.z.data(), state.vx.data(), state.vy.data(),
-               state.vz.data(), wind_x_.data(), wind_y_.data(), wind_z_.data(),
-               triangle.out->x.data() + cell, triangle.out->y.data() + cell,
-               triangle.out->z.data() + cell, triangle.p, triangle.q, triangle.s, n, share, relative);
+               state.vz.data(), wind_x_.data(), wind_y_.data(), wind_z_.data(), triangle.out->x.data() + cell,
+               triangle.out->y.data() + cell, triangle.out->z.data() + cell, triangle.p, triangle.q,
+               triangle.s, n, share, relative);
   }
 }
 
@@ -142,8 +141,7 @@ void ForceEvaluator<Real>::WindRow(const ClothModel<Real>& model, const SimParam
 // far node -f), then its up to six triangles' wind shares.
 template <typename Real>
 void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimParams& params,
-                                     const ClothState<Real>& state, int r,
-                                     NodeForces<Real>* forces) const {
+                                     const ClothState<Real>& state, int r, NodeForces<Real>* forces) const {
   const int cols = model.cols, rows = model.rows, row = r * cols;
   Real* fx = forces->x.data() + row;
   Real* fy = forces->y.data() + row;
@@ -157,8 +155,8 @@ void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimPar
   }
   // Adds sign * g over columns [first, end) of this row, g read at index (source + c).
   const auto add = [&](const NodeForces<Real>& g, int source, int first, int end, Real sign) {
-    AddKernel(fx + first, fy + first, fz + first, g.x.data() + source + first,
-              g.y.data() + source + first, g.z.data() + source + first, end - first, sign);
+    AddKernel(fx + first, fy + first, fz + first, g.x.data() + source + first, g.y.data() + source + first,
+              g.z.data() + source + first, end - first, sign);
   };
   for (size_t f = 0; f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];

@@ -34,15 +34,14 @@ class ForceEvaluator {
   void Resize(const ClothModel<Real>& model);
   void SampleWind(const ClothModel<Real>& model, const WindField& wind, double t);
   void SpringRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r);
-  void WindRow(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
-               int r);
-  void GatherRow(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
-                 int r, NodeForces<Real>* forces) const;
+  void WindRow(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state, int r);
+  void GatherRow(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state, int r,
+                 NodeForces<Real>* forces) const;
 
   // Scratch, sized to the model.
-  std::vector<NodeForces<Real>> spring_;  ///< per family, indexed by the spring's first node:
-                                          ///< force on that node (the far node gets minus it)
-  NodeForces<Real> upper_, lower_;        ///< per cell: a third of each triangle's wind force
+  std::vector<NodeForces<Real>> spring_;        ///< per family, indexed by the spring's first node:
+                                                ///< force on that node (the far node gets minus it)
+  NodeForces<Real> upper_, lower_;              ///< per cell: a third of each triangle's wind force
   std::vector<Real> wind_x_, wind_y_, wind_z_;  ///< m/s, wind per cell column
 };
 

@@ -12,19 +12,19 @@ enum class IntegratorKind {
 
 struct SimParams {
   // The flag: a grid of cols x rows nodes over width x height metres, hoist edge on the pole.
-  int cols = 32;           ///< nodes along the flag (>= 2)
-  int rows = 24;           ///< nodes down the flag (>= 2)
-  double width = 1.5;      ///< m, along the flag (fly length)
-  double height = 1.0;     ///< m, down the flag (hoist length)
-  double mass = 0.25;      ///< kg, the whole flag
+  int cols = 32;             ///< nodes along the flag (>= 2)
+  int rows = 24;             ///< nodes down the flag (>= 2)
+  double width = 1.5;        ///< m, along the flag (fly length)
+  double height = 1.0;       ///< m, down the flag (hoist length)
+  double mass = 0.25;        ///< kg, the whole flag
   double pole_height = 3.0;  ///< m, the pole's top; the flag's top edge hangs just below it
 
   // The sheet's moduli. Each spring's constant is modulus * dx * dy / L^2 (L its rest length),
   // so the flag's response does not change when the grid is refined (see cloth_model.hpp).
-  double stiffness = 2000.0;      ///< N/m, structural springs (neighbours along rows, columns)
-  double shear_stiffness = 200.0; ///< N/m, diagonal springs
-  double bend_stiffness = 20.0;   ///< N/m, springs between nodes two apart
-  double damping = 0.05;          ///< N s/m, along every spring, scaled like the stiffness
+  double stiffness = 2000.0;       ///< N/m, structural springs (neighbours along rows, columns)
+  double shear_stiffness = 200.0;  ///< N/m, diagonal springs
+  double bend_stiffness = 20.0;    ///< N/m, springs between nodes two apart
+  double damping = 0.05;           ///< N s/m, along every spring, scaled like the stiffness
 
   // Air and gravity.
   double friction = 0.2;          ///< 1/s, air friction -friction m_i v_i (seed: fraction of F)
@@ -33,10 +33,10 @@ struct SimParams {
   double gravity = 9.81;          ///< m/s^2, downward (-y)
 
   // Numerics.
-  double dt = 0.002;              ///< s per step; commands apply between steps. An explicit
-                                  ///< integrator splits a step into substeps when stability asks.
+  double dt = 0.002;  ///< s per step; commands apply between steps. An explicit
+                      ///< integrator splits a step into substeps when stability asks.
   IntegratorKind integrator = IntegratorKind::kSymplecticEuler;
-  int threads = 1;                ///< worker threads for forces and integration
+  int threads = 1;  ///< worker threads for forces and integration
 };
 
 }  // namespace flagsim::sim

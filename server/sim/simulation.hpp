@@ -23,9 +23,9 @@ namespace flagsim::sim {
 template <typename Real>
 class Simulation {
  public:
-  static constexpr double kSafety = 0.8;             ///< fraction of the stability limit used
-  static constexpr int kCheckpointInterval = 16;     ///< steps
-  static constexpr double kRunawaySpeed = 1000.0;    ///< m/s: any node faster is a blow-up
+  static constexpr double kSafety = 0.8;           ///< fraction of the stability limit used
+  static constexpr int kCheckpointInterval = 16;   ///< steps
+  static constexpr double kRunawaySpeed = 1000.0;  ///< m/s: any node faster is a blow-up
   static constexpr int kMaxGuardFactor = 1024;
 
   Simulation(const SimParams& params, const WindSettings& wind, uint64_t seed = 1);
@@ -62,8 +62,8 @@ class Simulation {
   WindField wind_;
   ForceEvaluator<Real> evaluator_;
   std::unique_ptr<Integrator<Real>> integrator_;
-  int substeps_ = 1;        ///< from the stability limit
-  int guard_factor_ = 1;    ///< doubled by each recovery, halved after a long run of good steps
+  int substeps_ = 1;      ///< from the stability limit
+  int guard_factor_ = 1;  ///< doubled by each recovery, halved after a long run of good steps
   int64_t recoveries_ = 0;
   int64_t good_steps_ = 0;  ///< since the last recovery
 };

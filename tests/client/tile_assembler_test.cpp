@@ -26,7 +26,9 @@ render::Framebuffer Picture(int seed) {
 TileAssembler::FrameResult Deliver(const EncodedFrame& frame, TileAssembler* assembler,
                                    const std::vector<bool>* lost = nullptr) {
   for (size_t i = 0; i < frame.tiles.size(); ++i) {
-    if (lost == nullptr || !(*lost)[i]) EXPECT_EQ(assembler->AddTile(frame.tiles[i]), "");
+    if (lost == nullptr || !(*lost)[i]) {
+      EXPECT_EQ(assembler->AddTile(frame.tiles[i]), "");
+    }
   }
   return assembler->AddManifest(frame.manifest);
 }
@@ -47,7 +49,8 @@ TEST(TileAssembler, IncrementsKeepItExact) {
   Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler);
   for (int frame = 0; frame < 10; ++frame) {
     for (int i = 0; i < 50; ++i) image.rgb[(frame * 7919 + i * 131) % image.rgb.size()] ^= 0x5a;
-    EXPECT_EQ(Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler), TileAssembler::FrameResult::kComplete);
+    EXPECT_EQ(Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler),
+              TileAssembler::FrameResult::kComplete);
     EXPECT_EQ(assembler.image(), image.rgb);
   }
 }
@@ -58,7 +61,8 @@ TEST(TileAssembler, LostTilesHealByTheRollingRefresh) {
   const render::Framebuffer image = Picture(5);
   std::vector<bool> lost(12, false);
   lost[4] = lost[9] = true;
-  EXPECT_EQ(Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler, &lost), TileAssembler::FrameResult::kIncomplete);
+  EXPECT_EQ(Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler, &lost),
+            TileAssembler::FrameResult::kIncomplete);
   int frames = 0;
   while (Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler) != TileAssembler::FrameResult::kComplete) {
     ASSERT_LT(++frames, 12 / TileStream::kRollingRefresh + 1) << "the refresh must come round";

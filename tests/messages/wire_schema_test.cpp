@@ -11,9 +11,9 @@ using testing::Encode;
 
 TEST(WireSchema, KnowsEveryTypeAndItsFields) {
   const Schema& schema = Schema::Flagsim();
-  for (const char* type : {"ack_t", "camera_command_t", "frame_t", "keyframe_command_t", "param_command_t",
-                           "parameter_t", "params_t", "refresh_request_t", "state_t", "status_t", "tile_t",
-                           "wind_command_t"}) {
+  for (const char* type :
+       {"ack_t", "camera_command_t", "frame_t", "keyframe_command_t", "param_command_t", "parameter_t",
+        "params_t", "refresh_request_t", "state_t", "status_t", "tile_t", "wind_command_t"}) {
     EXPECT_NE(schema.Find(type), nullptr) << type;
   }
   const StructLayout* state = schema.Find("state_t");

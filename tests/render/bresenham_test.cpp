@@ -37,7 +37,8 @@ void ExpectBresenham(int x0, int y0, int x1, int y1) {
   }
   for (const Pixel& p : pixels) {
     // each pixel is the nearest to the ideal line along the minor axis (within half a pixel)
-    const double offset = x_major ? (p.y - y0) - double(dy) * (p.x - x0) / dx : (p.x - x0) - double(dx) * (p.y - y0) / dy;
+    const double offset =
+        x_major ? (p.y - y0) - double(dy) * (p.x - x0) / dx : (p.x - x0) - double(dx) * (p.y - y0) / dy;
     EXPECT_LE(std::abs(offset), 0.5 + 1e-9);
   }
 }

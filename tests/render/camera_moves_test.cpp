@@ -21,7 +21,8 @@ TEST(CameraMoves, BadFieldsAreRejectedByNameAndChangeNothing) {
     return m;
   };
   std::vector<Case> cases;
-  for (const int op : {CameraMove::kRotateX, CameraMove::kRotateY, CameraMove::kRotateZ, CameraMove::kOrbit}) {
+  for (const int op :
+       {CameraMove::kRotateX, CameraMove::kRotateY, CameraMove::kRotateZ, CameraMove::kOrbit}) {
     for (const double bad : {kNan, kInf, -kInf, 7.0, -100.0}) {
       CameraMove m = move(op);
       m.angle = bad;

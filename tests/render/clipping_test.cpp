@@ -46,7 +46,7 @@ TEST(Clipping, ASharedEdgeIsCutAtTheSamePointFromBothSides) {
   ClipTriangle(b, a, d, &second);
   int shared = 0;
   for (const ClipVertex& p : first) {
-    if (std::abs(p.clip.z() + p.clip.w()) > 1e-6f) continue;  // only points on the near plane
+    if (std::abs(p.clip.z() + p.clip.w()) > 1e-6f) continue;        // only points on the near plane
     for (const ClipVertex& q : second) shared += p.clip == q.clip;  // bit for bit
   }
   EXPECT_GT(shared, 0);

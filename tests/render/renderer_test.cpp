@@ -33,7 +33,8 @@ Camera SmallCamera() {
 TEST(Renderer, SameImageAtAnyThreadCount) {
   const RenderScene scene = WavyFlagScene();
   Renderer renderer;
-  for (const ShadingMode mode : {ShadingMode::kWireframe, ShadingMode::kFlat, ShadingMode::kGouraud, ShadingMode::kPhong}) {
+  for (const ShadingMode mode :
+       {ShadingMode::kWireframe, ShadingMode::kFlat, ShadingMode::kGouraud, ShadingMode::kPhong}) {
     Camera camera;  // full size: many tiles
     Framebuffer reference;
     RenderOptions options;
@@ -81,7 +82,8 @@ TEST(Renderer, ModesDifferAndPhongIsClosestToGouraud) {
   }
   const auto difference = [&](int a, int b) {
     double sum = 0;
-    for (size_t i = 0; i < images[a].rgb.size(); ++i) sum += std::abs(int(images[a].rgb[i]) - int(images[b].rgb[i]));
+    for (size_t i = 0; i < images[a].rgb.size(); ++i)
+      sum += std::abs(int(images[a].rgb[i]) - int(images[b].rgb[i]));
     return sum;
   };
   EXPECT_GT(difference(0, 2), 0);
@@ -125,7 +127,8 @@ TEST(Renderer, AFacingSquareMatchesItsReferenceImage) {
   scene.lighting.lights = {head_on};
   scene.lighting.ambient = Eigen::Vector3f(0.5f, 0.5f, 0.5f);
   Mesh square;
-  for (const auto& [x, y] : {std::pair{-1.0f, -0.6f}, std::pair{1.0f, -0.6f}, std::pair{1.0f, 0.6f}, std::pair{-1.0f, 0.6f}}) {
+  for (const auto& [x, y] :
+       {std::pair{-1.0f, -0.6f}, std::pair{1.0f, -0.6f}, std::pair{1.0f, 0.6f}, std::pair{-1.0f, 0.6f}}) {
     square.positions.emplace_back(x, y, 0.0f);
     square.normals.emplace_back(0.0f, 0.0f, 1.0f);
     square.uvs.emplace_back(0.0f, 0.0f);
@@ -142,7 +145,8 @@ TEST(Renderer, AFacingSquareMatchesItsReferenceImage) {
   const Eigen::Matrix4d clip_from_world = camera.Projection() * camera.View();
   const auto screen = [&](double x, double y) {
     const Eigen::Vector4d clip = clip_from_world * Eigen::Vector4d(x, y, 0, 1);
-    return Eigen::Vector2d((clip.x() / clip.w() + 1) / 2 * camera.width, (1 - clip.y() / clip.w()) / 2 * camera.height);
+    return Eigen::Vector2d((clip.x() / clip.w() + 1) / 2 * camera.width,
+                           (1 - clip.y() / clip.w()) / 2 * camera.height);
   };
   const Eigen::Vector2d low = screen(-1.0, 0.6), high = screen(1.0, -0.6);  // top-left, bottom-right
   const Eigen::Vector3f light = paint.ambient * scene.lighting.ambient + paint.diffuse * head_on.colour;

@@ -46,8 +46,10 @@ TEST(TileRaster, TheNearerTriangleWinsInEitherOrder) {
   ShadeContext context;
   context.scene = &scene;
   TriangleSetup near_dark, far_light;
-  ASSERT_TRUE(SetupTriangle(At(0, 0, 0.3f, 0.2f), At(16, 0, 0.3f, 0.2f), At(0, 16, 0.3f, 0.2f), 16, 16, &near_dark));
-  ASSERT_TRUE(SetupTriangle(At(0, 0, 0.7f, 0.9f), At(16, 0, 0.7f, 0.9f), At(0, 16, 0.7f, 0.9f), 16, 16, &far_light));
+  ASSERT_TRUE(
+      SetupTriangle(At(0, 0, 0.3f, 0.2f), At(16, 0, 0.3f, 0.2f), At(0, 16, 0.3f, 0.2f), 16, 16, &near_dark));
+  ASSERT_TRUE(
+      SetupTriangle(At(0, 0, 0.7f, 0.9f), At(16, 0, 0.7f, 0.9f), At(0, 16, 0.7f, 0.9f), 16, 16, &far_light));
   for (const bool near_first : {true, false}) {
     Framebuffer framebuffer;
     framebuffer.Resize(16, 16);

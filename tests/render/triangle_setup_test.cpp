@@ -42,8 +42,9 @@ std::vector<std::array<ScreenVertex, 3>> Fan(float x0, float y0, float x1, float
 
 TEST(TriangleSetup, TwoTrianglesCoverASquareExactlyOnce) {
   // Edges through pixel centres: the top-left rule decides every one of them.
-  const std::vector<std::array<ScreenVertex, 3>> square = {{At(2.5f, 2.5f), At(10.5f, 2.5f), At(10.5f, 10.5f)},
-                                                           {At(2.5f, 2.5f), At(10.5f, 10.5f), At(2.5f, 10.5f)}};
+  const std::vector<std::array<ScreenVertex, 3>> square = {
+      {At(2.5f, 2.5f), At(10.5f, 2.5f), At(10.5f, 10.5f)},
+      {At(2.5f, 2.5f), At(10.5f, 10.5f), At(2.5f, 10.5f)}};
   const std::vector<int> count = Coverage(square, 16, 16);
   for (int y = 0; y < 16; ++y) {
     for (int x = 0; x < 16; ++x) {

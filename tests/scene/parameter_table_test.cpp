@@ -19,16 +19,27 @@ std::vector<double> Values(const Scene& scene) {
 
 std::vector<std::string> BadTexts(const Parameter& parameter) {
   switch (parameter.kind) {
-    case ParameterKind::kBoolean: return {"maybe", "", "2", "nan"};
-    case ParameterKind::kChoice: return {"nope", "", "0", "nan", parameter.choices[0] + " "};
+    case ParameterKind::kBoolean:
+      return {"maybe", "", "2", "nan"};
+    case ParameterKind::kChoice:
+      return {"nope", "", "0", "nan", parameter.choices[0] + " "};
     case ParameterKind::kInteger:
-    case ParameterKind::kReal: break;
+    case ParameterKind::kReal:
+      break;
   }
   const double span = parameter.max_value - parameter.min_value;
-  std::vector<std::string> texts = {"nan", "NaN", "inf", "-inf", "infinity", "", "1x", "abc",
+  std::vector<std::string> texts = {"nan",
+                                    "NaN",
+                                    "inf",
+                                    "-inf",
+                                    "infinity",
+                                    "",
+                                    "1x",
+                                    "abc",
                                     parameter.Format(parameter.min_value - std::max(1.0, span)),
                                     parameter.Format(parameter.max_value + std::max(1.0, span))};
-  if (parameter.kind == ParameterKind::kInteger) texts.push_back(parameter.Format(parameter.min_value) + ".5");
+  if (parameter.kind == ParameterKind::kInteger)
+    texts.push_back(parameter.Format(parameter.min_value) + ".5");
   return texts;
 }
 

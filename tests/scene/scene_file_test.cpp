@@ -44,7 +44,8 @@ integrator = "seed"
 velocity = [1, 2, 3.5]
 gust = 0.1
 ramp_time = 2
-)", "test.toml");
+)",
+                                 "test.toml");
   EXPECT_EQ(scene.name, "test");
   EXPECT_EQ(scene.seed, 9u);
   EXPECT_EQ(scene.sim.stiffness, 3000);
@@ -59,7 +60,8 @@ TEST(SceneFile, ErrorsNameTheFileLineAndProblem) {
   EXPECT_EQ(ErrorOf("[parameters]\nstiffness = -4\n").rfind("test.toml:2: stiffness:", 0), 0u);
   EXPECT_NE(ErrorOf("[parameters]\nbogus = 1\n").find("unknown parameter 'bogus'"), std::string::npos);
   EXPECT_NE(ErrorOf("colour = 1\n").find("unknown key 'colour'"), std::string::npos);
-  EXPECT_NE(ErrorOf("[wind]\nvelocity = [1, 2]\n").find("wind.velocity must be [vx, vy, vz]"), std::string::npos);
+  EXPECT_NE(ErrorOf("[wind]\nvelocity = [1, 2]\n").find("wind.velocity must be [vx, vy, vz]"),
+            std::string::npos);
   EXPECT_NE(ErrorOf("[wind]\nvelocity = [100, 0, 0]\n").find("velocity: speed 100"), std::string::npos);
   EXPECT_NE(ErrorOf("[wind]\nspeed = 3\n").find("unknown key wind.speed"), std::string::npos);
   EXPECT_EQ(ErrorOf("name = \n").rfind("test.toml:1:", 0), 0u);  // TOML syntax

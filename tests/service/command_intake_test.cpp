@@ -16,7 +16,8 @@ namespace {
 
 class CommandIntakeTest : public ::testing::Test {
  protected:
-  CommandIntakeTest() : bus_("memq://"), server_(bus_, channels_, Scene{}, ServerOptions{}), client_(bus_, channels_, 1.0) {}
+  CommandIntakeTest()
+      : bus_("memq://"), server_(bus_, channels_, Scene{}, ServerOptions{}), client_(bus_, channels_, 1.0) {}
 
   const Scene& scene() const { return server_.session().scene(); }
   const ServerStats& stats() const { return server_.stats(); }
@@ -32,7 +33,8 @@ class CommandIntakeTest : public ::testing::Test {
   /// Every parameter's current value, to check that a rejection changed nothing.
   std::vector<double> Values() const {
     std::vector<double> values;
-    for (const Parameter& parameter : ParameterTable::Get().parameters()) values.push_back(parameter.get(scene()));
+    for (const Parameter& parameter : ParameterTable::Get().parameters())
+      values.push_back(parameter.get(scene()));
     return values;
   }
 
@@ -67,7 +69,8 @@ TEST_F(CommandIntakeTest, ParamsApplyTogetherOrNotAtAll) {
   const auto before = Values();
   CommandOutcome outcome = SetParams({"stiffness", "damping"}, {"1500", "nan"});
   EXPECT_EQ(outcome.result, CommandOutcome::kRejected);
-  EXPECT_NE(outcome.reason.find("damping: 'nan' is not a finite number"), std::string::npos) << outcome.reason;
+  EXPECT_NE(outcome.reason.find("damping: 'nan' is not a finite number"), std::string::npos)
+      << outcome.reason;
   EXPECT_EQ(Values(), before);  // stiffness was valid, but the command failed as a whole
 
   outcome = SetParams({"stiffness", "damping"}, {"1500", "0.2"});
@@ -135,11 +138,11 @@ TEST_F(CommandIntakeTest, HostileBytesOnEveryCommandChannelAreCountedAndDropped)
   std::mt19937 random(3);
   const std::vector<uint8_t> valid = testing::Encode(testing::SomeParamCommand());
   std::vector<std::vector<uint8_t>> hostile = {
-      {},                                                // empty
-      {1, 2, 3},                                         // shorter than a fingerprint
+      {},                                                    // empty
+      {1, 2, 3},                                             // shorter than a fingerprint
       std::vector<uint8_t>(valid.begin(), valid.end() - 3),  // truncated
-      std::vector<uint8_t>(70 * 1024, 0xab),             // oversized
-      testing::Encode(testing::SomeState()),             // another type's fingerprint
+      std::vector<uint8_t>(70 * 1024, 0xab),                 // oversized
+      testing::Encode(testing::SomeState()),                 // another type's fingerprint
   };
   std::vector<uint8_t> huge_count = valid;  // num_assignments = 2^31 - 1
   const size_t at = 8 + 8 + 4 + 12 + 8 + 1;

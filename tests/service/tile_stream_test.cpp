@@ -53,7 +53,8 @@ TEST(TileStream, UnchangedTilesAreNotSentAgainBarTheRollingRefresh) {
   frame = stream.Encode(image, FrameInfo{}, 1);
   EXPECT_NE(std::find(frame.manifest.tile_indices.begin(), frame.manifest.tile_indices.end(), 6),
             frame.manifest.tile_indices.end());
-  EXPECT_EQ(frame.manifest.num_tiles, TileStream::kRollingRefresh + 1 - (frame.manifest.tile_indices[0] == 6));
+  EXPECT_EQ(frame.manifest.num_tiles,
+            TileStream::kRollingRefresh + 1 - (frame.manifest.tile_indices[0] == 6));
 }
 
 TEST(TileStream, TheRollingRefreshComesRoundEveryTile) {
@@ -97,7 +98,8 @@ TEST(TileStream, TheSameMessagesAtAnyThreadCount) {
   TileStream one, two;
   const EncodedFrame a = one.Encode(image, FrameInfo{}, 1), b = two.Encode(image, FrameInfo{}, 2);
   ASSERT_EQ(a.tiles.size(), b.tiles.size());
-  for (size_t i = 0; i < a.tiles.size(); ++i) EXPECT_EQ(testing::Encode(a.tiles[i]), testing::Encode(b.tiles[i]));
+  for (size_t i = 0; i < a.tiles.size(); ++i)
+    EXPECT_EQ(testing::Encode(a.tiles[i]), testing::Encode(b.tiles[i]));
   EXPECT_EQ(testing::Encode(a.manifest), testing::Encode(b.manifest));
 }
 

@@ -1,7 +1,6 @@
 #include "sim/cloth_state.hpp"
 
 #include <gtest/gtest.h>
-
 #include <xxhash.h>
 
 #include <cmath>

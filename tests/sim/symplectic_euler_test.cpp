@@ -14,8 +14,11 @@ using testing::NoWind;
 
 struct Rig {
   explicit Rig(const SimParams& params_in, ClothModel<double> model_in)
-      : params(params_in), model(std::move(model_in)), wind(NoWind()),
-        integrator(MakeIntegrator<double>(params.integrator)), state(RestState(model)) {}
+      : params(params_in),
+        model(std::move(model_in)),
+        wind(NoWind()),
+        integrator(MakeIntegrator<double>(params.integrator)),
+        state(RestState(model)) {}
   void Run(int substeps, double h) {
     const StepContext<double> context{model, params, wind, evaluator};
     for (int i = 0; i < substeps; ++i) integrator->Substep(context, h, &state);

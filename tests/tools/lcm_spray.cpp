@@ -22,10 +22,18 @@ int main(int argc, char** argv) {
     for (int c = 3; c < argc; ++c) {
       std::vector<uint8_t> bytes;
       switch (i % 4) {
-        case 0: bytes.resize(random() % 8); break;            // shorter than a fingerprint
-        case 1: bytes.assign(60000, 0xff); break;             // large, all lengths -1
-        case 2: bytes.resize(8 + random() % 300); break;      // random after a random fingerprint
-        case 3: bytes.assign(32, 0x7f); break;                // huge positive lengths
+        case 0:
+          bytes.resize(random() % 8);
+          break;  // shorter than a fingerprint
+        case 1:
+          bytes.assign(60000, 0xff);
+          break;  // large, all lengths -1
+        case 2:
+          bytes.resize(8 + random() % 300);
+          break;  // random after a random fingerprint
+        case 3:
+          bytes.assign(32, 0x7f);
+          break;  // huge positive lengths
       }
       if (i % 4 == 2) {
         for (uint8_t& b : bytes) b = static_cast<uint8_t>(random());
