@@ -26,66 +26,102 @@ RowPlane AlongRow(const Plane& plane, float fy) { return RowPlane{plane.origin +
 /// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
 /// base the material's colour, times the pattern's texel at (u, v) (channels 6, 7) when
 /// `kPatterned`. Perspective-correct: each channel is (channel / w) / (1 / w).
-/// Three passes over the span, the first two free of branches so that they vectorise: the depth
-/// test (keeping a mask), the colours of every pixel, then the stores where the mask is set.
 template <bool kPatterned>
-void FillSpanInterpolated(const TriangleSetup& t, const Material& material, const Texture& pattern, float fy,
-                          int first, int last, float* __restrict depth, uint8_t* __restrict rgb) {
-  // depth and rgb point at pixel `first`.
-  constexpr int kMaxSpan = 4096;
-  constexpr int kChannels = kPatterned ? 8 : 6;
-  const int n = last - first + 1;
-  const float fx0 = float(first - t.min_x);
-  alignas(32) uint8_t visible[kMaxSpan];
-  alignas(32) uint8_t red[kMaxSpan], green[kMaxSpan], blue[kMaxSpan];
-  int any = 0;
-  {
-    const RowPlane z = AlongRow(t.depth, fy);
-    float* __restrict d = depth;
-    for (int i = 0; i < n; ++i) {
-      const float here = z.at + z.step * (fx0 + float(i));
-      const bool nearer = here < d[i];
-      d[i] = nearer ? here : d[i];
-      visible[i] = nearer;
-      any += nearer;
-    }
+struct SpanShader {
+  static constexpr int kChannels = kPatterned ? 8 : 6;
+
+  SpanShader(const TriangleSetup& t, const Material& material, const Texture& texture, float fy)
+      : inverse_w(AlongRow(t.inverse_w, fy)),
+        base{material.colour[0], material.colour[1], material.colour[2]},
+        pattern(texture) {
+    for (int k = 0; k < kChannels; ++k) channel[k] = AlongRow(t.channels[k], fy);
   }
-  if (!any) return;
-  const RowPlane inverse_w = AlongRow(t.inverse_w, fy);
-  RowPlane channel[kChannels];
-  for (int k = 0; k < kChannels; ++k) channel[k] = AlongRow(t.channels[k], fy);
-  const float r0 = material.colour[0], g0 = material.colour[1], b0 = material.colour[2];
-  for (int i = 0; i < n; ++i) {
-    const float fx = fx0 + float(i);
+
+  /// The colour at fx pixels from the box's first column, 0..1 (more under strong light).
+  void At(float fx, float* r, float* g, float* b) const {
     const float w = 1.0f / (inverse_w.at + inverse_w.step * fx);
     float c[kChannels];
     for (int k = 0; k < kChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
-    float r = r0, g = g0, b = b0;
+    float red = base[0], green = base[1], blue = base[2];
     if constexpr (kPatterned) {
       const uint8_t* texel = pattern.Sample(c[6], c[7]);
-      r *= texel[0] * (1.0f / 255);
-      g *= texel[1] * (1.0f / 255);
-      b *= texel[2] * (1.0f / 255);
+      red *= texel[0] * (1.0f / 255);
+      green *= texel[1] * (1.0f / 255);
+      blue *= texel[2] * (1.0f / 255);
     }
-    red[i] = ToByteBranchless(r * c[0] + c[3]);
-    green[i] = ToByteBranchless(g * c[1] + c[4]);
-    blue[i] = ToByteBranchless(b * c[2] + c[5]);
+    *r = red * c[0] + c[3];
+    *g = green * c[1] + c[4];
+    *b = blue * c[2] + c[5];
   }
-  uint8_t* pixel = rgb;
-  if (any == n) {  // all in front: no mask to consult (the common case)
-    for (int i = 0; i < n; ++i, pixel += 3) {
-      pixel[0] = red[i];
-      pixel[1] = green[i];
-      pixel[2] = blue[i];
-    }
-    return;
+
+  RowPlane inverse_w;
+  RowPlane channel[kChannels];
+  float base[3];
+  const Texture& pattern;
+};
+
+/// Short spans (the flag's small triangles) and patterned ones (whose texel fetch does not
+/// vectorise): one pass, shading only the pixels in front. depth and rgb point at pixel `first`.
+template <bool kPatterned>
+void FillSpanOnePass(const SpanShader<kPatterned>& shader, const RowPlane& z, float fx0, int n, float* depth,
+                     uint8_t* rgb) {
+  for (int i = 0; i < n; ++i, rgb += 3) {
+    const float fx = fx0 + float(i);
+    const float here = z.at + z.step * fx;
+    if (!(here < depth[i])) continue;
+    depth[i] = here;
+    float r, g, b;
+    shader.At(fx, &r, &g, &b);
+    rgb[0] = ToByte(r);
+    rgb[1] = ToByte(g);
+    rgb[2] = ToByte(b);
   }
-  for (int i = 0; i < n; ++i, pixel += 3) {
-    if (!visible[i]) continue;
-    pixel[0] = red[i];
-    pixel[1] = green[i];
-    pixel[2] = blue[i];
+}
+
+/// Long plain spans (the ground, the pole): three passes, the first two free of branches so
+/// that they vectorise: the depth test (keeping a mask), the colours of every pixel, then the
+/// stores where the mask is set. depth and rgb point at pixel `first`.
+void FillSpanThreePasses(const SpanShader<false>& shader, const RowPlane& z, float fx0, int n,
+                         float* __restrict depth, uint8_t* __restrict rgb) {
+  constexpr int kMaxSpan = 4096;
+  alignas(32) uint8_t visible[kMaxSpan];
+  alignas(32) uint8_t red[kMaxSpan], green[kMaxSpan], blue[kMaxSpan];
+  int in_front = 0;
+  for (int i = 0; i < n; ++i) {
+    const float here = z.at + z.step * (fx0 + float(i));
+    const bool nearer = here < depth[i];
+    depth[i] = nearer ? here : depth[i];
+    visible[i] = nearer;
+    in_front += nearer;
   }
+  if (in_front == 0) return;
+  for (int i = 0; i < n; ++i) {
+    float r, g, b;
+    shader.At(fx0 + float(i), &r, &g, &b);
+    red[i] = ToByteBranchless(r);
+    green[i] = ToByteBranchless(g);
+    blue[i] = ToByteBranchless(b);
+  }
+  for (int i = 0; i < n; ++i, rgb += 3) {
+    if (in_front < n && !visible[i]) continue;
+    rgb[0] = red[i];
+    rgb[1] = green[i];
+    rgb[2] = blue[i];
+  }
+}
+
+template <bool kPatterned>
+void FillSpanInterpolated(const TriangleSetup& t, const Material& material, const Texture& pattern, float fy,
+                          int first, int last, float* depth, uint8_t* rgb) {
+  constexpr int kLongSpan = 16;  ///< px: below this the passes' set-up costs more than they save
+  const SpanShader<kPatterned> shader(t, material, pattern, fy);
+  const RowPlane z = AlongRow(t.depth, fy);
+  const int n = last - first + 1;
+  const float fx0 = float(first - t.min_x);
+  if constexpr (!kPatterned) {
+    if (n >= kLongSpan) return FillSpanThreePasses(shader, z, fx0, n, depth, rgb);
+  }
+  FillSpanOnePass(shader, z, fx0, n, depth, rgb);
 }
 
 /// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel.
