@@ -111,7 +111,7 @@ void Server::PublishState() {
 
 // state => frame => changed tiles => paced publisher (tiles, then the manifest)
 void Server::FrameDue() {
-  if (!frame_due_ || session_.scene().service.frame_rate <= 0) return;
+  if (!frame_due_) return;  // due by the frame rate, or asked for by REFRESH (even at frame_rate 0)
   frame_due_ = false;
   if (paced_.queued() > 0) {  // still sending the last frame: skip this one
     ++stats_.frames_skipped;

@@ -69,7 +69,7 @@ class Server {
   double last_tick_ = -1;
   double next_state_time_ = 0;  ///< s of simulated time when STATE is next due
   double next_frame_time_ = 0;  ///< s of simulated time when a frame is next due
-  bool frame_due_ = true;
+  bool frame_due_ = false;
   double next_second_ = 0;        ///< s, monotonic, when PARAMS and STATUS are next due
   double window_sim_start_ = 0;   ///< simulated time at the last STATUS
   double window_wall_start_ = 0;  ///< wall time at the last STATUS

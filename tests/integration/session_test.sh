@@ -95,6 +95,9 @@ expect 0 "snapshot follows the new size" "$flagctl" --prefix $prefix --timeout 5
 contains "320 x 180" "  at 320 x 180"
 expect 0 "watch reports frames" "$flagctl" --prefix $prefix watch --duration 2.5
 contains "FRAME" "  with their rate"
+expect 0 "frames can be turned off" "$flagctl" --prefix $prefix set frame_rate=0
+expect 0 "and a snapshot still gets one" "$flagctl" --prefix $prefix --timeout 5 snapshot -o "$work/asked.png"
+expect 0 "frames back on" "$flagctl" --prefix $prefix set frame_rate=30
 
 echo "-- hostile bytes"
 expect 0 "spray garbage on every command channel" "$spray" "$LCM_DEFAULT_URL" 40 \
