@@ -3,7 +3,8 @@
 //
 //   build/bench/shading_bench [--csv FILE] [--frames N] [--images DIR]
 //
-// --csv FILE    also write the table as CSV: mode,cols,rows,ms,psnr_image_db,psnr_flag_db
+// --csv FILE    also write the table as CSV: mode,cols,rows,ms,psnr_image_db,psnr_flag_db,
+//               psnr_flag_phong_db (the flag against Phong at the same size: shading error alone)
 // --frames N    timed frames per mode and grid (default 30; 5 more are drawn first and discarded)
 // --images DIR  write every measured frame and each reference as binary PPM into DIR
 //
@@ -54,16 +55,18 @@ struct FlagCase {
   int cols = 0, rows = 0;          ///< flag grid, nodes
   render::RenderScene scene;       ///< bench::BenchScene(cols, rows)
   std::vector<uint8_t> reference;  ///< supersampled Phong, RGB8, top row first
+  std::vector<uint8_t> phong;      ///< Phong at the frame's own size: the shading without the edges
   std::vector<uint8_t> flag_mask;  ///< 1 where the flag is drawn, per pixel
 };
 
 /// One line of the table.
 struct Row {
   std::string mode;
-  int cols = 0, rows = 0;    ///< flag grid, nodes
-  double ms = 0;             ///< median time per frame
-  double psnr_image_db = 0;  ///< whole image against the reference
-  double psnr_flag_db = 0;   ///< flag pixels only
+  int cols = 0, rows = 0;         ///< flag grid, nodes
+  double ms = 0;                  ///< median time per frame
+  double psnr_image_db = 0;       ///< whole image against the reference
+  double psnr_flag_db = 0;        ///< flag pixels only
+  double psnr_flag_phong_db = 0;  ///< flag pixels against Phong at the same size: shading error alone
 };
 
 bool ParseOptions(int argc, char** argv, Options* options) {
@@ -159,8 +162,12 @@ std::string GridName(int cols, int rows) { return std::to_string(cols) + "x" + s
 /// (cols, rows) => the flag's scene, its reference and flag mask; the reference written to the
 /// images directory if asked.
 FlagCase PrepareFlag(int cols, int rows, const Options& options) {
-  FlagCase flag{cols, rows, bench::BenchScene(cols, rows), {}, {}};
+  FlagCase flag{cols, rows, bench::BenchScene(cols, rows), {}, {}, {}};
   flag.reference = SupersampledPhong(flag.scene);
+  render::Renderer renderer;
+  render::Framebuffer phong;
+  renderer.Render(flag.scene, FrameCamera(1), FrameOptions(render::ShadingMode::kPhong, false), &phong);
+  flag.phong = phong.rgb;
   flag.flag_mask = FlagMask(flag.scene);
   if (!options.images_dir.empty()) {
     const std::string path = options.images_dir + "/reference_" + GridName(cols, rows) + ".ppm";
@@ -185,6 +192,7 @@ Row MeasureMode(const FlagCase& flag, render::ShadingMode mode, const Options& o
                            [&] { renderer.Render(flag.scene, camera, render_options, &frame); });
   row.psnr_image_db = bench::Psnr(frame.rgb, flag.reference, nullptr);
   row.psnr_flag_db = bench::Psnr(frame.rgb, flag.reference, &flag.flag_mask);
+  row.psnr_flag_phong_db = bench::Psnr(frame.rgb, flag.phong, &flag.flag_mask);
   if (!options.images_dir.empty()) {
     const std::string path =
         options.images_dir + "/" + row.mode + "_" + GridName(flag.cols, flag.rows) + ".ppm";
@@ -194,12 +202,14 @@ Row MeasureMode(const FlagCase& flag, render::ShadingMode mode, const Options& o
 }
 
 void PrintHeader() {
-  std::printf("%-10s %-6s %9s %15s %14s\n", "mode", "flag", "ms", "PSNR image dB", "PSNR flag dB");
+  std::printf("%-10s %-6s %9s %15s %14s %22s\n", "mode", "flag", "ms", "PSNR image dB", "PSNR flag dB",
+              "PSNR flag vs Phong dB");
 }
 
 void PrintRow(const Row& row) {
-  std::printf("%-10s %-6s %9.2f %15.2f %14.2f\n", row.mode.c_str(), GridName(row.cols, row.rows).c_str(),
-              row.ms, row.psnr_image_db, row.psnr_flag_db);
+  std::printf("%-10s %-6s %9.2f %15.2f %14.2f %22.2f\n", row.mode.c_str(),
+              GridName(row.cols, row.rows).c_str(), row.ms, row.psnr_image_db, row.psnr_flag_db,
+              row.psnr_flag_phong_db);
   std::fflush(stdout);
 }
 
@@ -207,10 +217,10 @@ void PrintRow(const Row& row) {
 bool WriteCsv(const std::string& path, const std::vector<Row>& table) {
   std::FILE* file = std::fopen(path.c_str(), "w");
   if (!file) return false;
-  std::fprintf(file, "mode,cols,rows,ms,psnr_image_db,psnr_flag_db\n");
+  std::fprintf(file, "mode,cols,rows,ms,psnr_image_db,psnr_flag_db,psnr_flag_phong_db\n");
   for (const Row& row : table) {
-    std::fprintf(file, "%s,%d,%d,%.3f,%.2f,%.2f\n", row.mode.c_str(), row.cols, row.rows, row.ms,
-                 row.psnr_image_db, row.psnr_flag_db);
+    std::fprintf(file, "%s,%d,%d,%.3f,%.2f,%.2f,%.2f\n", row.mode.c_str(), row.cols, row.rows, row.ms,
+                 row.psnr_image_db, row.psnr_flag_db, row.psnr_flag_phong_db);
   }
   return std::fclose(file) == 0;
 }
