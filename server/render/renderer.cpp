@@ -20,17 +20,22 @@ void PutShade(const Shade& shade, float* channels) {
   }
 }
 
-ScreenVertex Project(const ClipVertex& v, bool back, int width, int height) {
+/// Clip space => window position, depth and 1 / w.
+ScreenVertex Project(const ClipVertex& v, int width, int height) {
   ScreenVertex s;
   s.inverse_w = 1.0f / v.clip.w();
   s.x = (v.clip.x() * s.inverse_w + 1.0f) * 0.5f * width;
   s.y = (1.0f - v.clip.y() * s.inverse_w) * 0.5f * height;
   s.z = (v.clip.z() * s.inverse_w + 1.0f) * 0.5f;
-  const int block = back ? kBackBlock : kFrontBlock;
-  std::copy(v.channels + block, v.channels + block + 6, s.channels);
-  s.channels[6] = v.channels[kUv];
-  s.channels[7] = v.channels[kUv + 1];
   return s;
+}
+
+/// The side's six light (or position and normal) channels, then u and v.
+void PickChannels(const ClipVertex& v, bool back, ScreenVertex* s) {
+  const int block = back ? kBackBlock : kFrontBlock;
+  std::copy(v.channels + block, v.channels + block + 6, s->channels);
+  s->channels[6] = v.channels[kUv];
+  s->channels[7] = v.channels[kUv + 1];
 }
 
 /// Flat shading: one lighting value per face, from its normal at its centroid.
@@ -54,12 +59,10 @@ void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, co
                   int height, std::vector<TriangleSetup>* out) {
   ScreenVertex s[3];
   const ClipVertex* v[3] = {a, b, c};
-  for (int i = 0; i < 3; ++i) s[i] = Project(*v[i], false, width, height);
+  for (int i = 0; i < 3; ++i) s[i] = Project(*v[i], width, height);
   const bool back = IsBackFacing(s[0], s[1], s[2]);
   if (back && mesh.back_material < 0) return;  // culled
-  if (back) {
-    for (int i = 0; i < 3; ++i) s[i] = Project(*v[i], true, width, height);
-  }
+  for (int i = 0; i < 3; ++i) PickChannels(*v[i], back, &s[i]);
   TriangleSetup setup;
   if (!SetupTriangle(s[0], s[1], s[2], width, height, &setup)) return;
   setup.material = back ? mesh.back_material : mesh.front_material;

@@ -6,13 +6,8 @@
 namespace flagsim::render {
 namespace {
 
+/// 0..1 => 0..255, rounded and clamped; branch-free so that the loops using it vectorise.
 uint8_t ToByte(float value) {
-  const float scaled = value * 255.0f + 0.5f;
-  return scaled <= 0 ? 0 : scaled >= 255 ? 255 : static_cast<uint8_t>(scaled);
-}
-
-/// ToByte without branches, for loops that vectorise: the same result for every finite value.
-uint8_t ToByteBranchless(float value) {
   return static_cast<uint8_t>(std::min(std::max(value * 255.0f + 0.5f, 0.0f), 255.0f));
 }
 
@@ -98,9 +93,9 @@ void FillSpanThreePasses(const SpanShader<false>& shader, const RowPlane& z, flo
   for (int i = 0; i < n; ++i) {
     float r, g, b;
     shader.At(fx0 + float(i), &r, &g, &b);
-    red[i] = ToByteBranchless(r);
-    green[i] = ToByteBranchless(g);
-    blue[i] = ToByteBranchless(b);
+    red[i] = ToByte(r);
+    green[i] = ToByte(g);
+    blue[i] = ToByte(b);
   }
   for (int i = 0; i < n; ++i, rgb += 3) {
     if (in_front < n && !visible[i]) continue;
