@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace flagsim::sim {
 namespace {
@@ -86,6 +87,14 @@ FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double fric
     }
   }
   FrequencyBound bound;
+  bound.friction = friction;
+  bound.stiffness_damping_ratio = model.families.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  for (const SpringFamily<Real>& family : model.families) {
+    const double ratio = family.stiffness > 0 ? double(family.damping) / family.stiffness
+                                              : std::numeric_limits<double>::infinity();
+    bound.stiffness_damping_ratio = std::min(bound.stiffness_damping_ratio, ratio);
+  }
+  if (!std::isfinite(bound.stiffness_damping_ratio)) bound.stiffness_damping_ratio = 0;
   for (int i = 0; i < model.num_nodes(); ++i) {
     if (model.pinned(i)) continue;
     const double inverse_mass = model.inverse_mass[i];

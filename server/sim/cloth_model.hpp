@@ -72,6 +72,10 @@ void SetSpringConstants(const SimParams& params, ClothModel<Real>* model);
 struct FrequencyBound {
   double omega_squared = 0;  ///< (rad/s)^2, >= the largest eigenvalue of M^-1 K
   double damping_rate = 0;   ///< 1/s, >= the largest eigenvalue of M^-1 C
+  /// Lower bounds on the damping of any mode of frequency w: C >= ratio K + friction M, so a
+  /// mode's damping rate is at least ratio w^2 + friction. ratio = min over families c / k.
+  double stiffness_damping_ratio = 0;  ///< s
+  double friction = 0;                 ///< 1/s
 };
 template <typename Real>
 FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double friction);

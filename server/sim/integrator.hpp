@@ -31,10 +31,18 @@ class Integrator {
   virtual void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) = 0;
   /// The largest stable h for a grid whose frequencies are bounded by `bound`; +inf if none.
   virtual double StableStep(const FrequencyBound& bound) const = 0;
+  /// Forgets whatever is carried from one substep to the next (forces evaluated at the end of
+  /// the last substep, factorisations). The simulation calls it whenever the state, parameters
+  /// or wind change other than by Substep.
+  virtual void Reset() {}
 };
 
 template <typename Real>
 std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind);
+
+// Each integrator's own factory, defined in its file; MakeIntegrator picks one.
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeSymplecticEuler(bool seed_friction);
 
 /// Names as PARAM and scene files spell them, in IntegratorKind order.
 const std::vector<std::string>& IntegratorNames();

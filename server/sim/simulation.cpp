@@ -45,6 +45,7 @@ void Simulation<Real>::SetParams(const SimParams& params) {
 template <typename Real>
 void Simulation<Real>::SetWind(const WindSettings& wind) {
   wind_.Set(wind, state_.time);
+  integrator_->Reset();
   Checkpoint();  // a rollback must not replay earlier steps under the new wind
 }
 
@@ -55,6 +56,7 @@ void Simulation<Real>::RestartFlag() {
   state_ = RestState(model_);
   state_.time = time;
   state_.step = step;
+  integrator_->Reset();
   Checkpoint();
 }
 
@@ -112,6 +114,7 @@ void Simulation<Real>::Recover() {
     }
     guard_factor_ *= 2;
     state_ = checkpoint_;
+    integrator_->Reset();
     bool sound = true;
     while (sound && state_.step < target) {
       Advance();

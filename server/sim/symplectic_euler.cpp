@@ -52,17 +52,10 @@ class SymplecticEuler : public Integrator<Real> {
 }  // namespace
 
 template <typename Real>
-std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind) {
-  return std::make_unique<SymplecticEuler<Real>>(kind == IntegratorKind::kSeed);
+std::unique_ptr<Integrator<Real>> MakeSymplecticEuler(bool seed_friction) {
+  return std::make_unique<SymplecticEuler<Real>>(seed_friction);
 }
-template std::unique_ptr<Integrator<float>> MakeIntegrator<float>(IntegratorKind);
-template std::unique_ptr<Integrator<double>> MakeIntegrator<double>(IntegratorKind);
-
-const std::vector<std::string>& IntegratorNames() {
-  static const std::vector<std::string> names = {"symplectic_euler", "seed"};
-  return names;
-}
-
-std::string IntegratorName(IntegratorKind kind) { return IntegratorNames()[static_cast<int>(kind)]; }
+template std::unique_ptr<Integrator<float>> MakeSymplecticEuler<float>(bool);
+template std::unique_ptr<Integrator<double>> MakeSymplecticEuler<double>(bool);
 
 }  // namespace flagsim::sim

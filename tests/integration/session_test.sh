@@ -33,17 +33,19 @@ expect() {
     sed 's/^/      /' "$work/out"
   fi
 }
-# contains TEXT DESCRIPTION: the last command's output contains TEXT.
-contains() {
-  if grep -qF -- "$1" "$work/out"; then
+# found GREP_MODE PATTERN DESCRIPTION: the last command's output has PATTERN.
+found() {
+  if grep -q "$1" -- "$2" "$work/out"; then
     passes=$((passes + 1))
-    echo "ok    $2"
+    echo "ok    $3"
   else
     failures=$((failures + 1))
-    echo "FAIL  $2: no '$1' in:"
+    echo "FAIL  $3: no '$2' in:"
     sed 's/^/      /' "$work/out"
   fi
 }
+contains() { found -F "$@"; }  # fixed text
+matches() { found -E "$@"; }   # extended regular expression
 
 echo "-- startup errors"
 expect 2 "flagd rejects an unknown scene" "$flagd" --scene no-such-scene
@@ -76,7 +78,7 @@ expect 3 "set of an unknown name rejected" "$flagctl" --prefix $prefix set colou
 contains "unknown parameter 'colour'" "  with the name"
 expect 2 "set without NAME=VALUE is a usage error" "$flagctl" --prefix $prefix set stiffness
 expect 0 "params lists the table" "$flagctl" --prefix $prefix params
-contains "stiffness         1500" "  with the new value"
+matches "^stiffness +1500 " "  with the new value"
 expect 0 "refresh gets a full state" "$flagctl" --prefix $prefix refresh
 contains "32 x 24 nodes" "  of the whole flag"
 expect 4 "no answer on another prefix" "$flagctl" --prefix NOBODY_ --timeout 1 status

@@ -1,0 +1,25 @@
+#include "integrator.hpp"
+
+namespace flagsim::sim {
+
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::kSymplecticEuler:
+      return MakeSymplecticEuler<Real>(false);
+    case IntegratorKind::kSeed:
+      return MakeSymplecticEuler<Real>(true);
+  }
+  return nullptr;
+}
+template std::unique_ptr<Integrator<float>> MakeIntegrator<float>(IntegratorKind);
+template std::unique_ptr<Integrator<double>> MakeIntegrator<double>(IntegratorKind);
+
+const std::vector<std::string>& IntegratorNames() {
+  static const std::vector<std::string> names = {"symplectic_euler", "seed"};
+  return names;
+}
+
+std::string IntegratorName(IntegratorKind kind) { return IntegratorNames()[static_cast<int>(kind)]; }
+
+}  // namespace flagsim::sim
