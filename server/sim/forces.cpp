@@ -141,7 +141,8 @@ void ForceEvaluator<Real>::WindRow(const ClothModel<Real>& model, const SimParam
 // far node -f), then its up to six triangles' wind shares.
 template <typename Real>
 void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimParams& params,
-                                     const ClothState<Real>& state, int r, NodeForces<Real>* forces) const {
+                                     const ClothState<Real>& state, int r, ForceTerms terms,
+                                     NodeForces<Real>* forces) const {
   const int cols = model.cols, rows = model.rows, row = r * cols;
   Real* fx = forces->x.data() + row;
   Real* fy = forces->y.data() + row;
@@ -158,7 +159,7 @@ void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimPar
     AddKernel(fx + first, fy + first, fz + first, g.x.data() + source + first, g.y.data() + source + first,
               g.z.data() + source + first, end - first, sign);
   };
-  for (size_t f = 0; f < model.families.size(); ++f) {
+  for (size_t f = 0; terms == ForceTerms::kAll && f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];
     const int first = family.first_col(), end = family.end_col(cols);
     // as first nodes of springs (r, c) -> (r + dr, c + dc)
@@ -186,7 +187,7 @@ void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimPar
 template <typename Real>
 void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimParams& params,
                                     const WindField& wind, const ClothState<Real>& state, double t,
-                                    NodeForces<Real>* forces) {
+                                    NodeForces<Real>* forces, ForceTerms terms) {
   Resize(model);
   SampleWind(model, wind, t);
   forces->x.resize(model.num_nodes());
@@ -198,11 +199,11 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
   {
 #pragma omp for schedule(static)
     for (int r = 0; r < rows; ++r) {
-      SpringRow(model, state, r);
+      if (terms == ForceTerms::kAll) SpringRow(model, state, r);
       if (r + 1 < rows) WindRow(model, params, state, r);
     }
 #pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) GatherRow(model, params, state, r, forces);
+    for (int r = 0; r < rows; ++r) GatherRow(model, params, state, r, terms, forces);
   }
 }
 

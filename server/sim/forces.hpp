@@ -23,12 +23,17 @@ struct NodeForces {
   std::vector<Real> x, y, z;
 };
 
+/// Which forces to sum: all of them, or all but the springs (for integrators that solve the
+/// springs themselves as constraints).
+enum class ForceTerms { kAll, kExternal };
+
 template <typename Real>
 class ForceEvaluator {
  public:
   /// (state.x, state.v, t) => forces. Pinned nodes get forces too; integrators ignore them.
   void Evaluate(const ClothModel<Real>& model, const SimParams& params, const WindField& wind,
-                const ClothState<Real>& state, double t, NodeForces<Real>* forces);
+                const ClothState<Real>& state, double t, NodeForces<Real>* forces,
+                ForceTerms terms = ForceTerms::kAll);
 
  private:
   void Resize(const ClothModel<Real>& model);
@@ -36,7 +41,7 @@ class ForceEvaluator {
   void SpringRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r);
   void WindRow(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state, int r);
   void GatherRow(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state, int r,
-                 NodeForces<Real>* forces) const;
+                 ForceTerms terms, NodeForces<Real>* forces) const;
 
   // Scratch, sized to the model.
   std::vector<NodeForces<Real>> spring_;        ///< per family, indexed by the spring's first node:

@@ -9,6 +9,14 @@ std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind) {
       return MakeSymplecticEuler<Real>(false);
     case IntegratorKind::kSeed:
       return MakeSymplecticEuler<Real>(true);
+    case IntegratorKind::kExplicitEuler:
+      return MakeExplicitEuler<Real>();
+    case IntegratorKind::kVelocityVerlet:
+      return MakeVelocityVerlet<Real>();
+    case IntegratorKind::kRk4:
+      return MakeRk4<Real>();
+    case IntegratorKind::kXpbd:
+      return MakeXpbd<Real>();
   }
   return nullptr;
 }
@@ -16,7 +24,8 @@ template std::unique_ptr<Integrator<float>> MakeIntegrator<float>(IntegratorKind
 template std::unique_ptr<Integrator<double>> MakeIntegrator<double>(IntegratorKind);
 
 const std::vector<std::string>& IntegratorNames() {
-  static const std::vector<std::string> names = {"symplectic_euler", "seed"};
+  static const std::vector<std::string> names = {"symplectic_euler", "seed", "explicit_euler",
+                                                 "verlet",           "rk4",  "xpbd"};
   return names;
 }
 

@@ -43,6 +43,14 @@ std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind);
 // Each integrator's own factory, defined in its file; MakeIntegrator picks one.
 template <typename Real>
 std::unique_ptr<Integrator<Real>> MakeSymplecticEuler(bool seed_friction);
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeExplicitEuler();
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeVelocityVerlet();
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeRk4();
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeXpbd();
 
 /// Names as PARAM and scene files spell them, in IntegratorKind order.
 const std::vector<std::string>& IntegratorNames();

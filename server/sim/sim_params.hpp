@@ -8,6 +8,10 @@ namespace flagsim::sim {
 enum class IntegratorKind {
   kSymplecticEuler,  ///< v += h a(x, v); x += h v. Order 1, stable for h < 2 / w_max.
   kSeed,             ///< the seed's scheme: symplectic Euler with friction -mu F (mu a fraction)
+  kExplicitEuler,    ///< x += h v; v += h a(x, v). Order 1, stable only with enough damping.
+  kVelocityVerlet,   ///< kick, drift, kick. Order 2, stable for h < 2 / w_max.
+  kRk4,              ///< classic Runge-Kutta. Order 4, four force evaluations, h < 2.6 / w_max.
+  kXpbd,             ///< springs as compliant constraints, Gauss-Seidel. Unconditionally stable.
 };
 
 struct SimParams {
@@ -38,7 +42,7 @@ struct SimParams {
   IntegratorKind integrator = IntegratorKind::kSymplecticEuler;
   int solver_iterations = 10;      ///< XPBD and local/global iterations per step
   double solver_tolerance = 1e-3;  ///< implicit Euler: CG stops at this relative residual
-  int threads = 1;  ///< worker threads for forces and integration
+  int threads = 1;                 ///< worker threads for forces and integration
 };
 
 }  // namespace flagsim::sim

@@ -1,0 +1,58 @@
+// Explicit (forward) Euler: both updates read the state at the start of the substep.
+//   x <- x + h v;  v <- v + h M^-1 F(x, v, t)
+// Stability: on x'' = -w^2 x - g x' a substep multiplies each mode by 1 + h s, s a root of
+// s^2 + g s + w^2 = 0. An underdamped mode shrinks only if |1 + h s|^2 = 1 - h g + h^2 w^2 < 1,
+// that is h < g / w^2; an overdamped one if h < 2 / |s|, |s| <= g. Every mode's damping is at
+// least ratio w^2 + friction (FrequencyBound), so h < ratio + friction / w_max^2 and
+// h < 2 / g_max suffice. Without damping no step is stable: the method's classic failure.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "integrator.hpp"
+#include "node_update.hpp"
+
+namespace flagsim::sim {
+namespace {
+
+template <typename Real>
+class ExplicitEuler : public Integrator<Real> {
+ public:
+  void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) override {
+    const ClothModel<Real>& model = context.model;
+    context.evaluator.Evaluate(model, context.params, context.wind, *state, state->time, &forces_);
+    const Real step = Real(h);
+    ForEachNode(model.rows, model.cols, context.params.threads, [&](int i) {
+      const Real a = step * model.inverse_mass[i];
+      state->x[i] += step * state->vx[i];
+      state->y[i] += step * state->vy[i];
+      state->z[i] += step * state->vz[i];
+      state->vx[i] += a * forces_.x[i];
+      state->vy[i] += a * forces_.y[i];
+      state->vz[i] += a * forces_.z[i];
+    });
+    state->time += h;
+  }
+
+  double StableStep(const FrequencyBound& bound) const override {
+    const double w2 = bound.omega_squared, g = bound.damping_rate;
+    double limit = std::numeric_limits<double>::infinity();
+    if (w2 > 0) limit = bound.stiffness_damping_ratio + bound.friction / w2;
+    if (g > 0) limit = std::min(limit, 2 / g);
+    return limit;
+  }
+
+ private:
+  NodeForces<Real> forces_;
+};
+
+}  // namespace
+
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeExplicitEuler() {
+  return std::make_unique<ExplicitEuler<Real>>();
+}
+template std::unique_ptr<Integrator<float>> MakeExplicitEuler<float>();
+template std::unique_ptr<Integrator<double>> MakeExplicitEuler<double>();
+
+}  // namespace flagsim::sim

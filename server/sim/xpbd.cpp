@@ -1,0 +1,134 @@
+// XPBD (Macklin, Mueller, Chentanez 2016): springs as compliant distance constraints, every
+// other force (gravity, friction, wind) explicit.
+//   v~ = v + h M^-1 F_ext(x, v, t);  p = x + h v~;  lambda = 0
+//   solver_iterations times, each spring (a, b) in turn, with n = (p_b - p_a) / |p_b - p_a|:
+//     C = |p_b - p_a| - L,  alpha~ = 1 / (k h^2),  gamma = c / (k h)
+//     dl = (-C - alpha~ lambda - gamma n . ((p_b - x_b) - (p_a - x_a))) / ((1 + gamma)(w_a + w_b) + alpha~)
+//     p_a -= w_a n dl;  p_b += w_b n dl;  lambda += dl
+//   v = (p - x) / h;  x = p
+// Compliance 1/k makes the constraint the spring k (|d| - L) of forces.hpp and gamma its damping
+// c along the spring, so that with enough iterations a step approaches implicit Euler on the
+// same forces: first order, unconditionally stable, damping motion at large h.
+// Gauss-Seidel in a fixed order that threads cannot change: each family's springs are split
+// into two colours in which no two springs share a node (alternate columns of a family along
+// the rows, alternate rows of one down the columns; in blocks of the family's reach), so the
+// springs of one colour are solved in parallel and the colours one after another.
+#include <cmath>
+#include <limits>
+
+#include "integrator.hpp"
+#include "node_update.hpp"
+
+namespace flagsim::sim {
+namespace {
+
+/// A spring's colour: 0 or 1 by the block of its first node along the family's direction.
+template <typename Real>
+int Colour(const SpringFamily<Real>& family, int r, int c) {
+  return family.dr == 0 ? (c / family.dc) % 2 : (r / family.dr) % 2;
+}
+
+template <typename Real>
+class Xpbd : public Integrator<Real> {
+ public:
+  void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) override {
+    const ClothModel<Real>& model = context.model;
+    context.evaluator.Evaluate(model, context.params, context.wind, *state, state->time, &forces_,
+                               ForceTerms::kExternal);
+    Predict(model, context.params.threads, Real(h), *state);
+    lambda_.resize(model.families.size());
+    for (std::vector<Real>& lambda : lambda_) lambda.assign(model.num_nodes(), Real(0));
+    Solve(model, context.params, Real(h), *state);
+    Finish(model, context.params.threads, Real(h), state);
+    state->time += h;
+  }
+
+  double StableStep(const FrequencyBound&) const override { return std::numeric_limits<double>::infinity(); }
+
+ private:
+  // p = x + h (v + h M^-1 F_ext)
+  void Predict(const ClothModel<Real>& model, int threads, Real h, const ClothState<Real>& state) {
+    for (std::vector<Real>* p : {&px_, &py_, &pz_}) p->resize(model.num_nodes());
+    ForEachNode(model.rows, model.cols, threads, [&](int i) {
+      const Real a = h * model.inverse_mass[i];
+      px_[i] = state.x[i] + h * (state.vx[i] + a * forces_.x[i]);
+      py_[i] = state.y[i] + h * (state.vy[i] + a * forces_.y[i]);
+      pz_[i] = state.z[i] + h * (state.vz[i] + a * forces_.z[i]);
+    });
+  }
+
+  void Solve(const ClothModel<Real>& model, const SimParams& params, Real h, const ClothState<Real>& start) {
+    const int threads = params.threads;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    for (int iteration = 0; iteration < params.solver_iterations; ++iteration) {
+      for (size_t f = 0; f < model.families.size(); ++f) {
+        for (int colour = 0; colour < 2; ++colour) {
+#pragma omp for schedule(static)
+          for (int r = 0; r < model.rows - model.families[f].dr; ++r) {
+            SolveRow(model, model.families[f], lambda_[f].data(), r, colour, h, start);
+          }
+        }
+      }
+    }
+  }
+
+  // The springs of one colour whose first node is in row r.
+  void SolveRow(const ClothModel<Real>& model, const SpringFamily<Real>& family, Real* lambda, int r,
+                int colour, Real h, const ClothState<Real>& start) {
+    if (family.stiffness <= 0) return;
+    const Real compliance = Real(1) / (family.stiffness * h * h);
+    const Real gamma = family.damping / (family.stiffness * h);
+    for (int c = family.first_col(); c < family.end_col(model.cols); ++c) {
+      if (Colour(family, r, c) != colour) continue;
+      const int a = model.index(r, c), b = model.index(r + family.dr, c + family.dc);
+      const Real wa = model.inverse_mass[a], wb = model.inverse_mass[b];
+      if (wa + wb == Real(0)) continue;
+      Real nx = px_[b] - px_[a], ny = py_[b] - py_[a], nz = pz_[b] - pz_[a];
+      const Real length = std::sqrt(nx * nx + ny * ny + nz * nz);
+      if (length == Real(0)) continue;  // no direction to push along
+      nx /= length;
+      ny /= length;
+      nz /= length;
+      const Real moved = nx * ((px_[b] - start.x[b]) - (px_[a] - start.x[a])) +
+                         ny * ((py_[b] - start.y[b]) - (py_[a] - start.y[a])) +
+                         nz * ((pz_[b] - start.z[b]) - (pz_[a] - start.z[a]));
+      const Real dl = (-(length - family.rest_length) - compliance * lambda[a] - gamma * moved) /
+                      ((1 + gamma) * (wa + wb) + compliance);
+      lambda[a] += dl;
+      px_[a] -= wa * dl * nx;
+      py_[a] -= wa * dl * ny;
+      pz_[a] -= wa * dl * nz;
+      px_[b] += wb * dl * nx;
+      py_[b] += wb * dl * ny;
+      pz_[b] += wb * dl * nz;
+    }
+  }
+
+  // v = (p - x) / h; x = p
+  void Finish(const ClothModel<Real>& model, int threads, Real h, ClothState<Real>* state) {
+    const Real inverse_h = Real(1) / h;
+    ForEachNode(model.rows, model.cols, threads, [&](int i) {
+      state->vx[i] = (px_[i] - state->x[i]) * inverse_h;
+      state->vy[i] = (py_[i] - state->y[i]) * inverse_h;
+      state->vz[i] = (pz_[i] - state->z[i]) * inverse_h;
+      state->x[i] = px_[i];
+      state->y[i] = py_[i];
+      state->z[i] = pz_[i];
+    });
+  }
+
+  NodeForces<Real> forces_;
+  std::vector<Real> px_, py_, pz_;         ///< m, predicted then corrected positions
+  std::vector<std::vector<Real>> lambda_;  ///< per family, per first node: the spring's multiplier
+};
+
+}  // namespace
+
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeXpbd() {
+  return std::make_unique<Xpbd<Real>>();
+}
+template std::unique_ptr<Integrator<float>> MakeXpbd<float>();
+template std::unique_ptr<Integrator<double>> MakeXpbd<double>();
+
+}  // namespace flagsim::sim
