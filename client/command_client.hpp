@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <string>
 
@@ -42,6 +43,10 @@ class CommandClient {
 
   const std::string& client_id() const { return client_id_; }
 
+  /// Work to do between looks at the bus while an answer is awaited (an in-process server's
+  /// loop, say); by default the client only waits on the bus.
+  void WhileWaiting(std::function<void()> work) { while_waiting_ = std::move(work); }
+
  private:
   template <class Publish>
   CommandOutcome SendRepeatedly(int64_t sequence, Publish publish) {
@@ -56,7 +61,12 @@ class CommandClient {
         publish();
         next_send = now + kRetryInterval;
       }
-      bus_.Handle(static_cast<int>(1000 * std::max(0.001, std::min(next_send, start + timeout_) - now)));
+      if (while_waiting_) {
+        while_waiting_();
+        bus_.HandleAll();
+      } else {
+        bus_.Handle(static_cast<int>(1000 * std::max(0.001, std::min(next_send, start + timeout_) - now)));
+      }
     }
     return outcome_;
   }
@@ -68,6 +78,7 @@ class CommandClient {
   std::string client_id_;
   int64_t sequence_ = 0;
   int64_t awaited_ = -1;
+  std::function<void()> while_waiting_;
   CommandOutcome outcome_;
 };
 

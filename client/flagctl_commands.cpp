@@ -44,6 +44,7 @@ int Report(const Link& link, const CommandOutcome& outcome) {
   switch (outcome.result) {
     case CommandOutcome::kAccepted:
       std::printf("accepted at step %lld\n", static_cast<long long>(outcome.step));
+      if (!outcome.reason.empty()) std::printf("note: %s\n", outcome.reason.c_str());
       return kOk;
     case CommandOutcome::kRejected:
       std::fprintf(stderr, "flagctl: rejected: %s\n", outcome.reason.c_str());

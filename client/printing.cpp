@@ -84,6 +84,7 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 static_cast<long long>(status.commands_rejected),
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;
+  if (!status.last_recovery.empty()) out << "last recovery:     " << status.last_recovery << "\n";
 }
 
 std::string TipText(const state_t& state) {

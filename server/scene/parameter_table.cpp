@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "sim/integrator.hpp"
+#include "sim/simulation.hpp"
 
 namespace flagsim {
 namespace {
@@ -154,6 +155,8 @@ ParameterTable::ParameterTable() {
            "step: commands apply between steps; explicit integrators substep for stability"),
       Make("integrator", "", ParameterKind::kChoice, 0, double(sim::IntegratorNames().size() - 1),
            &Scene::sim, &SimParams::integrator, "time integrator"),
+      Integer("substeps", 0, kMaxSubsteps, &SimParams::substeps,
+              "substeps per step; 0: chosen from the integrator's stability limit"),
       Integer("solver_iterations", 1, 1000, &SimParams::solver_iterations,
               "iterations per step of the xpbd and projective integrators"),
       Real("solver_tolerance", "", 1e-8, 0.5, &SimParams::solver_tolerance,
@@ -206,6 +209,17 @@ std::string ParameterTable::CheckConsistency(const Scene& scene) {
   if (scene.sim.integrator == sim::IntegratorKind::kSeed && scene.sim.friction >= 1) {
     return "friction: the seed integrator reads friction as a fraction mu of the force; allowed "
            "0 .. 1 (exclusive) with integrator=seed";
+  }
+  // An explicit integrator on a stiff, fine or undamped flag may need more substeps than any
+  // server can take in time: say so rather than stall.
+  const int substeps = sim::SubstepsFor(scene.sim);
+  if (substeps > kMaxSubsteps) {
+    return "integrator: " + sim::IntegratorName(scene.sim.integrator) + " needs " + std::to_string(substeps) +
+           (scene.sim.substeps > 0 ? " substeps per step (as set)"
+                                   : " substeps per step to stay stable on this flag") +
+           "; allowed at most " + std::to_string(kMaxSubsteps) +
+           ": raise damping, lower stiffness, coarsen the grid, or choose an unconditionally stable "
+           "integrator (xpbd)";
   }
   return "";
 }

@@ -51,7 +51,8 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
 
   const auto previous = last_ack_.find(command->client_id);
   if (previous != last_ack_.end() && previous->second.sequence == command->sequence) {
-    bus_.Publish(channels_.ack, previous->second);  // a retry: same answer, applied once
+    // A retry: applied once; the same answer again, or nothing yet while it settles.
+    if (previous->second.utime > 0) bus_.Publish(channels_.ack, previous->second);
     return;
   }
 
@@ -61,9 +62,9 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   ack.channel = channels_.Unprefixed(channel);
   ack.step = session_.simulation().state().step;
   ack.reason = CheckClientId(command->client_id);
+  const int64_t recoveries = session_.simulation().recoveries();
   if (ack.reason.empty()) ack.reason = (this->*apply)(*command);
   ack.accepted = ack.reason.empty();
-  ack.utime = UnixMicros();
   if (ack.accepted) {
     ++stats_.commands_accepted;
     spdlog::info("{} from {} #{}: accepted at step {}", ack.channel, ack.client_id, ack.sequence, ack.step);
@@ -72,8 +73,43 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
     spdlog::warn("{} from {} #{}: rejected: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
   }
   if (last_ack_.size() >= 1024) last_ack_.clear();  // bound the memory strangers can claim
-  if (!command->client_id.empty()) last_ack_[command->client_id] = ack;
+  const bool settles = ack.accepted && (channel == channels_.wind || channel == channels_.param);
+  if (settles && settling_.size() < size_t(kQueueCapacity)) {
+    ack.utime = 0;  // not answered yet
+    last_ack_[ack.client_id] = ack;
+    settling_.push_back({ack, ack.step + kSettleSteps, recoveries});
+    return;
+  }
+  Answer(ack, recoveries);
+}
+
+// The ACK goes out, noting any recovery since the command was applied.
+void CommandIntake::Answer(ack_t ack, int64_t recoveries_before) {
+  const sim::GuardEvent& event = session_.simulation().last_guard_event();
+  if (ack.accepted && session_.simulation().recoveries() > recoveries_before) {
+    ack.reason = "applied; then the guard caught the flag at " + event.Describe();
+    spdlog::warn("{} from {} #{}: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
+  }
+  ack.utime = UnixMicros();
+  const auto last = last_ack_.find(ack.client_id);
+  const bool newer_came = last != last_ack_.end() && last->second.sequence != ack.sequence;
+  if (!ack.client_id.empty() && !newer_came) last_ack_[ack.client_id] = ack;
   bus_.Publish(channels_.ack, ack);
+}
+
+void CommandIntake::AfterStep() {
+  const int64_t step = session_.simulation().state().step;
+  size_t answered = 0;
+  while (answered < settling_.size() && settling_[answered].due_step <= step) {
+    Answer(settling_[answered].ack, settling_[answered].recoveries_before);
+    ++answered;
+  }
+  settling_.erase(settling_.begin(), settling_.begin() + answered);
+}
+
+void CommandIntake::FlushPending() {
+  for (const Settling& each : settling_) Answer(each.ack, each.recoveries_before);
+  settling_.clear();
 }
 
 std::string CommandIntake::ApplyWind(const wind_command_t& command) {

@@ -3,12 +3,17 @@
 // if valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the
 // server. A retry (same client id and sequence) gets the first answer again and is not
 // applied twice.
+//
+// Accepted WIND and PARAM commands are answered kSettleSteps steps later: if the guard had to
+// recover the flag in between, the ACK says what it found and did (the command is still
+// applied; the reason field carries the note).
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "bus.hpp"
 #include "channels.hpp"
@@ -33,6 +38,13 @@ class CommandIntake {
 
   /// True once after any accepted command that changed parameters (PARAMS is due).
   bool TakeParamsChanged() { return std::exchange(params_changed_, false); }
+  /// After each step: answers the commands whose settling window has passed.
+  void AfterStep();
+  /// Answers every command still settling (the server is about to stop).
+  void FlushPending();
+
+  static constexpr int kSettleSteps = 32;
+
   /// Once after REFRESH requests: the latest request id (a full STATE and PARAMS and a
   /// keyframe are due); -1 when none came.
   int64_t TakeRefreshRequest() { return std::exchange(refresh_request_, -1); }
@@ -50,12 +62,21 @@ class CommandIntake {
   std::string ApplyCamera(const camera_command_t& command);
 
   void Drop(const std::string& channel, const std::string& reason);
+  void Answer(ack_t ack, int64_t recoveries_before);
+
+  /// An accepted command whose answer waits for the flag to settle under it.
+  struct Settling {
+    ack_t ack;
+    int64_t due_step;
+    int64_t recoveries_before;  ///< the guard's count when it was applied
+  };
 
   Bus& bus_;
   const Channels& channels_;
   Session& session_;
   ServerStats& stats_;
   std::map<std::string, ack_t> last_ack_;  ///< per client id: the answer to its latest command
+  std::vector<Settling> settling_;         ///< in the order they were applied
   bool params_changed_ = false;
   int64_t refresh_request_ = -1;
   double last_drop_log_ = -1;  ///< wall s of the last logged drop (drops are logged once a second)

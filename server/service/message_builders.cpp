@@ -90,6 +90,7 @@ status_t MakeStatusMessage(const Session& session, const ServerStats& stats, con
   message.commands_rejected = stats.commands_rejected;
   message.messages_dropped = stats.messages_dropped;
   message.recoveries = simulation.recoveries();
+  message.last_recovery = simulation.last_guard_event().Describe();
   return message;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "message_builders.hpp"
 #include "utime.hpp"
@@ -28,6 +29,7 @@ void Server::Run(const std::atomic<bool>& stop) {
     if (options_.duration > 0 && session_.simulation().state().time >= options_.duration) break;
     bus_.Handle(static_cast<int>(std::ceil(wait * 1000)));
   }
+  intake_.FlushPending();
   PublishState();  // the last word: where the flag stopped
   PublishStatus(MonotonicSeconds());
 }
@@ -58,7 +60,7 @@ void Server::StepDue(double now) {
   while (accumulator_ >= dt) {
     if (options_.duration > 0 && session_.simulation().state().time >= options_.duration) break;
     const double start = MonotonicSeconds();
-    session_.Step();
+    integrator_replaced_ |= session_.Step();
     const double end = MonotonicSeconds();
     ++stats_.steps;
     stats_.step_seconds += end - start;
@@ -73,6 +75,7 @@ void Server::StepDue(double now) {
 // session, not of the machine's speed. STATE goes out at once; a frame is drawn after the
 // stepping (FrameDue), and a second one falling due before that is skipped.
 void Server::AfterStep() {
+  intake_.AfterStep();
   const double time = session_.simulation().state().time;
   if (time >= next_state_time_) {
     PublishState();
@@ -94,7 +97,7 @@ void Server::PublishDue(double now) {
     tiles_.RequestKeyframe(request);
     frame_due_ = true;  // the keyframe goes out now, not at the next frame time
   }
-  if (intake_.TakeParamsChanged() || refresh) PublishParams();
+  if (intake_.TakeParamsChanged() || std::exchange(integrator_replaced_, false) || refresh) PublishParams();
   if (now >= next_second_) {
     PublishParams();
     PublishStatus(now);

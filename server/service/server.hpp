@@ -70,9 +70,10 @@ class Server {
   double next_state_time_ = 0;  ///< s of simulated time when STATE is next due
   double next_frame_time_ = 0;  ///< s of simulated time when a frame is next due
   bool frame_due_ = false;
-  double next_second_ = 0;        ///< s, monotonic, when PARAMS and STATUS are next due
-  double window_sim_start_ = 0;   ///< simulated time at the last STATUS
-  double window_wall_start_ = 0;  ///< wall time at the last STATUS
+  bool integrator_replaced_ = false;  ///< by the guard: PARAMS is due
+  double next_second_ = 0;            ///< s, monotonic, when PARAMS and STATUS are next due
+  double window_sim_start_ = 0;       ///< simulated time at the last STATUS
+  double window_wall_start_ = 0;      ///< wall time at the last STATUS
   uint64_t window_bytes_start_ = 0;
 };
 

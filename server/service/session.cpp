@@ -47,6 +47,13 @@ std::string Session::ApplyParams(const ParamChange& change) {
   return "";
 }
 
+bool Session::Step() {
+  simulation_.Step();
+  if (simulation_.params().integrator == scene_.sim.integrator) return false;
+  scene_.sim.integrator = simulation_.params().integrator;
+  return true;
+}
+
 std::string Session::ApplyCamera(const render::CameraMove& move) {
   if (move.operation == render::CameraMove::kReset) {
     scene_.camera = initial_.camera;

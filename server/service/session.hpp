@@ -35,7 +35,9 @@ class Session {
   /// Applies a camera move (kReset: back to the scene's camera); "" or why it was rejected.
   std::string ApplyCamera(const render::CameraMove& move);
 
-  void Step() { simulation_.Step(); }
+  /// One step of the flag. If the guard replaced the integrator, the scene follows (PARAMS shows
+  /// it, and the next PARAM builds on it); returns true then.
+  bool Step();
 
   /// Draws the flag as it is now with the session's camera and shading, on `threads` threads.
   const render::Framebuffer& RenderFrame(int threads);

@@ -40,6 +40,7 @@ struct SimParams {
   double dt = 0.002;  ///< s per step; commands apply between steps. An explicit
                       ///< integrator splits a step into substeps when stability asks.
   IntegratorKind integrator = IntegratorKind::kSymplecticEuler;
+  int substeps = 0;                ///< per step; 0: chosen from the integrator's stability limit
   int solver_iterations = 10;      ///< XPBD and local/global iterations per step
   double solver_tolerance = 1e-3;  ///< implicit Euler: CG stops at this relative residual
   int threads = 1;                 ///< worker threads for forces and integration

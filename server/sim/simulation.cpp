@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace flagsim::sim {
 namespace {
@@ -13,31 +14,75 @@ bool GridChanged(const SimParams& a, const SimParams& b) {
 
 constexpr int kMaxSubsteps = 1 << 16;
 
+std::string Format(const char* format, double value) {
+  char text[96];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+/// The largest |d|^2 / L^2 over the structural springs.
+template <typename Real>
+Real LargestStretchSquared(const ClothModel<Real>& model, const ClothState<Real>& state) {
+  Real largest = 0;
+  const Real *x = state.x.data(), *y = state.y.data(), *z = state.z.data();
+  for (const SpringFamily<Real>& family : model.families) {
+    if (family.kind != SpringKind::kStructural || family.rest_length <= 0) continue;
+    const Real inverse_rest_squared = Real(1) / (family.rest_length * family.rest_length);
+    const int offset = family.dr * model.cols + family.dc;
+    for (int r = 0; r + family.dr < model.rows; ++r) {
+      const int begin = model.index(r, family.first_col()), end = model.index(r, family.end_col(model.cols));
+#pragma omp simd reduction(max : largest)
+      for (int a = begin; a < end; ++a) {
+        const Real dx = x[a + offset] - x[a], dy = y[a + offset] - y[a], dz = z[a + offset] - z[a];
+        largest = std::max(largest, (dx * dx + dy * dy + dz * dz) * inverse_rest_squared);
+      }
+    }
+  }
+  return largest;
+}
+
 }  // namespace
+
+std::string GuardEvent::Describe() const {
+  if (step < 0) return "";
+  return "step " + std::to_string(step) + ": " + problem + "; " + action;
+}
+
+int SubstepsFor(const SimParams& params) {
+  if (params.substeps > 0) return params.substeps;
+  const ClothModel<double> model = BuildClothModel<double>(params);
+  const FrequencyBound bound = EstimateFrequencyBound(model, AirFriction(params));
+  const double stable =
+      Simulation<double>::kSafety * MakeIntegrator<double>(params.integrator)->StableStep(bound);
+  const double needed = std::ceil(params.dt / stable);
+  return static_cast<int>(std::clamp(needed, 1.0, double(kMaxSubsteps)));
+}
 
 template <typename Real>
 Simulation<Real>::Simulation(const SimParams& params, const WindSettings& wind, uint64_t seed)
     : params_(params), wind_(wind, seed) {
-  Rebuild();
+  model_ = BuildClothModel<Real>(params_);
+  ChooseIntegrator();
   state_ = RestState(model_);
   Checkpoint();
 }
 
 template <typename Real>
-void Simulation<Real>::Rebuild() {
-  model_ = BuildClothModel<Real>(params_);
+void Simulation<Real>::ChooseIntegrator() {
   integrator_ = MakeIntegrator<Real>(params_.integrator);
-  const FrequencyBound bound = EstimateFrequencyBound(model_, AirFriction(params_));
-  const double stable = kSafety * integrator_->StableStep(bound);
-  const double needed = std::ceil(params_.dt / stable);
-  substeps_ = static_cast<int>(std::clamp(needed, 1.0, double(kMaxSubsteps)));
+  substeps_ = SubstepsFor(params_);
 }
 
 template <typename Real>
 void Simulation<Real>::SetParams(const SimParams& params) {
   const bool regrid = GridChanged(params, params_);
   params_ = params;
-  Rebuild();
+  if (regrid) {
+    model_ = BuildClothModel<Real>(params_);
+  } else {
+    SetSpringConstants(params_, &model_);
+  }
+  ChooseIntegrator();
   if (regrid) RestartFlag();
   Checkpoint();
 }
@@ -64,8 +109,9 @@ template <typename Real>
 void Simulation<Real>::Step() {
   if (state_.step % kCheckpointInterval == 0) Checkpoint();
   Advance();
-  if (!StateIsSound()) {
-    Recover();
+  const std::string problem = Problem();
+  if (!problem.empty()) {
+    Recover(problem);
   } else if (guard_factor_ > 1 && ++good_steps_ >= 64 * kCheckpointInterval) {
     guard_factor_ /= 2;  // the trouble has passed: relax towards the stability limit
     good_steps_ = 0;
@@ -83,8 +129,9 @@ void Simulation<Real>::Advance() {
 }
 
 template <typename Real>
-bool Simulation<Real>::StateIsSound() const {
-  // A NaN or infinity anywhere poisons the sum; a blow-up in progress shows as a huge speed.
+std::string Simulation<Real>::Problem() const {
+  // A NaN or infinity anywhere poisons the sum; a blow-up in progress shows as a huge speed
+  // or a spring pulled far past its length.
   Real sum = 0, fastest = 0;
   const int n = state_.num_nodes();
   const Real *x = state_.x.data(), *y = state_.y.data(), *z = state_.z.data();
@@ -94,34 +141,68 @@ bool Simulation<Real>::StateIsSound() const {
     sum += x[i] + y[i] + z[i] + vx[i] + vy[i] + vz[i];
     fastest = std::max(fastest, std::max(std::abs(vx[i]), std::max(std::abs(vy[i]), std::abs(vz[i]))));
   }
-  return std::isfinite(sum) && fastest < Real(kRunawaySpeed);
+  if (!std::isfinite(sum)) return "non-finite positions or velocities";
+  if (fastest >= Real(kRunawaySpeed)) return Format("a node at %.3g m/s", fastest);
+  const Real stretch_squared = LargestStretchSquared(model_, state_);
+  if (stretch_squared >= Real(kRunawayStretch * kRunawayStretch)) {
+    return Format("a spring stretched to %.3g times its length", std::sqrt(stretch_squared));
+  }
+  return "";
 }
 
+// Back to the checkpoint, then redo the lost steps more carefully until they come out sound.
 template <typename Real>
-void Simulation<Real>::Recover() {
+void Simulation<Real>::Recover(const std::string& problem) {
   const int64_t target = state_.step;
   const double target_time = state_.time;
+  GuardEvent event;
+  event.step = target;
+  event.problem = problem + " with " + IntegratorName(params_.integrator);
   good_steps_ = 0;
   while (true) {
     ++recoveries_;
-    if (guard_factor_ >= kMaxGuardFactor) {  // no step is small enough: start the flag afresh
-      guard_factor_ = 1;
-      state_ = RestState(model_);
+    if (!Escalate(target - checkpoint_.step, &event)) {  // nothing left to try: a fresh flag
       state_.step = target;
       state_.time = target_time;
-      Checkpoint();
-      return;
+      RestartFlag();
+      break;
     }
-    guard_factor_ *= 2;
     state_ = checkpoint_;
     integrator_->Reset();
-    bool sound = true;
-    while (sound && state_.step < target) {
+    std::string again;
+    while (again.empty() && state_.step < target) {
       Advance();
-      sound = StateIsSound();
+      again = Problem();
     }
-    if (sound) return;
+    if (again.empty()) {
+      state_.time = target_time;
+      break;
+    }
   }
+  last_event_ = event;
+}
+
+// The next measure: twice the substeps; past kMaxGuardFactor a stable integrator. Returns
+// false when there is none left (the integrator is already unconditionally stable).
+template <typename Real>
+bool Simulation<Real>::Escalate(int64_t lost, GuardEvent* event) {
+  const std::string redo = "redid " + std::to_string(lost) + " steps from the checkpoint";
+  if (guard_factor_ < kMaxGuardFactor) {
+    guard_factor_ *= 2;
+    event->action = redo + " at " + std::to_string(guard_factor_) + "x the substeps";
+    return true;
+  }
+  guard_factor_ = 1;
+  const FrequencyBound bound = EstimateFrequencyBound(model_, AirFriction(params_));
+  if (std::isfinite(integrator_->StableStep(bound))) {
+    event->action = "switched from " + IntegratorName(params_.integrator) + " to " +
+                    IntegratorName(kStableFallback) + " and " + redo;
+    params_.integrator = kStableFallback;
+    ChooseIntegrator();
+    return true;
+  }
+  event->action = "restarted the flag at rest";
+  return false;
 }
 
 template class Simulation<float>;

@@ -1,15 +1,19 @@
 // The flag in time: model, state, wind and integrator, stepped at a fixed dt with a guard.
 //
 // One step (dt):
-//   checkpoint   every kCheckpointInterval steps, and whenever parameters change
-//   advance      n substeps of the integrator, n from its stability limit (with a safety
-//                factor) times the guard's factor
-//   guard        a non-finite or runaway state rolls back to the checkpoint and redoes the
-//                lost steps with twice the substeps; the flag never leaves a step bad
+//   checkpoint   every kCheckpointInterval steps, and whenever parameters or wind change
+//   advance      n substeps of the integrator: n from its stability limit (with a safety
+//                factor) or the `substeps` parameter, times the guard's factor
+//   guard        a state with non-finite values, a runaway node or a runaway spring rolls back
+//                to the checkpoint and redoes the lost steps with twice the substeps; past
+//                kMaxGuardFactor an explicit integrator gives way to an unconditionally stable
+//                one, and an integrator that is already stable restarts the flag at rest. The
+//                flag never leaves a step bad, and what happened is kept as a GuardEvent.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "cloth_model.hpp"
 #include "cloth_state.hpp"
@@ -20,13 +24,28 @@
 
 namespace flagsim::sim {
 
+/// What the guard found and did about it.
+struct GuardEvent {
+  int64_t step = -1;    ///< the step that went bad; -1: nothing yet
+  std::string problem;  ///< e.g. "a node at 1.2e+03 m/s"
+  std::string action;   ///< e.g. "redid 16 steps at 4x the substeps"
+  std::string Describe() const;
+};
+
+/// Substeps per step that `params` asks for: its `substeps` or, when that is 0, enough to stay
+/// within the integrator's stability limit on the grid's frequency bound (with kSafety).
+int SubstepsFor(const SimParams& params);
+
 template <typename Real>
 class Simulation {
  public:
   static constexpr double kSafety = 0.8;           ///< fraction of the stability limit used
   static constexpr int kCheckpointInterval = 16;   ///< steps
   static constexpr double kRunawaySpeed = 1000.0;  ///< m/s: any node faster is a blow-up
-  static constexpr int kMaxGuardFactor = 1024;
+  static constexpr double kRunawayStretch = 5.0;   ///< a structural spring this many times its rest length
+  static constexpr int kMaxGuardFactor = 16;
+  /// Where an explicit integrator goes when even kMaxGuardFactor times the substeps fail.
+  static constexpr IntegratorKind kStableFallback = IntegratorKind::kXpbd;
 
   Simulation(const SimParams& params, const WindSettings& wind, uint64_t seed = 1);
 
@@ -40,19 +59,23 @@ class Simulation {
   /// The flag back at rest, flat, in its initial pose; time and step go on.
   void RestartFlag();
 
+  /// The parameters in use: as set, except an integrator the guard replaced.
   const SimParams& params() const { return params_; }
   const ClothModel<Real>& model() const { return model_; }
   const ClothState<Real>& state() const { return state_; }
   const WindField& wind() const { return wind_; }
   int substeps() const { return substeps_ * guard_factor_; }
   int64_t recoveries() const { return recoveries_; }
+  const GuardEvent& last_guard_event() const { return last_event_; }
   uint64_t Hash() const { return StateHash(state_); }
 
  private:
-  void Rebuild();
+  void ChooseIntegrator();
   void Advance();
-  bool StateIsSound() const;
-  void Recover();
+  /// "" if the state is sound, else what is wrong with it.
+  std::string Problem() const;
+  void Recover(const std::string& problem);
+  bool Escalate(int64_t lost, GuardEvent* event);
   void Checkpoint() { checkpoint_ = state_; }
 
   SimParams params_;
@@ -62,10 +85,11 @@ class Simulation {
   WindField wind_;
   ForceEvaluator<Real> evaluator_;
   std::unique_ptr<Integrator<Real>> integrator_;
-  int substeps_ = 1;      ///< from the stability limit
+  int substeps_ = 1;      ///< from the stability limit or the parameter
   int guard_factor_ = 1;  ///< doubled by each recovery, halved after a long run of good steps
   int64_t recoveries_ = 0;
   int64_t good_steps_ = 0;  ///< since the last recovery
+  GuardEvent last_event_;
 };
 
 }  // namespace flagsim::sim

@@ -16,8 +16,14 @@ namespace {
 
 class CommandIntakeTest : public ::testing::Test {
  protected:
+  // The server steps back to back while the client waits: accepted WIND and PARAM commands are
+  // answered once the flag has taken CommandIntake::kSettleSteps steps under them.
   CommandIntakeTest()
-      : bus_("memq://"), server_(bus_, channels_, Scene{}, ServerOptions{}), client_(bus_, channels_, 1.0) {}
+      : bus_("memq://"),
+        server_(bus_, channels_, Scene{}, ServerOptions{true, 0}),
+        client_(bus_, channels_, 5.0) {
+    client_.WhileWaiting([this] { server_.Tick(MonotonicSeconds()); });
+  }
 
   const Scene& scene() const { return server_.session().scene(); }
   const ServerStats& stats() const { return server_.stats(); }
@@ -115,8 +121,28 @@ TEST_F(CommandIntakeTest, ARetryIsAnsweredAgainButAppliedOnce) {
   bus_.Subscribe(channels_.ack, [&acks](const std::string&, const uint8_t*, size_t) { ++acks; });
   for (int i = 0; i < 3; ++i) bus_.Publish(channels_.wind, command);
   bus_.HandleAll();
-  EXPECT_EQ(acks, 3);
+  EXPECT_EQ(acks, 0);  // settling: retries wait for the one answer
+  while (server_.session().simulation().state().step < CommandIntake::kSettleSteps) {
+    server_.Tick(MonotonicSeconds());
+  }
+  bus_.HandleAll();
+  EXPECT_EQ(acks, 1);
+  bus_.Publish(channels_.wind, command);  // a retry after the answer: the same answer again
+  bus_.HandleAll();
+  EXPECT_EQ(acks, 2);
   EXPECT_EQ(stats().commands_accepted, 1);
+}
+
+// Too few substeps for a stiff flag: the guard rolls back, multiplies the substeps, then hands
+// the flag to a stable integrator; the command's ACK says so, and so do STATUS and PARAMS.
+TEST_F(CommandIntakeTest, TheAckOfACommandThatBlewTheFlagUpSaysWhatTheGuardDid) {
+  const CommandOutcome outcome = SetParams({"stiffness", "substeps"}, {"100000", "1"});
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
+  EXPECT_NE(outcome.reason.find("the guard caught the flag"), std::string::npos) << outcome.reason;
+  EXPECT_NE(outcome.reason.find("switched from symplectic_euler to xpbd"), std::string::npos)
+      << outcome.reason;
+  EXPECT_GT(server_.session().simulation().recoveries(), 0);
+  EXPECT_EQ(scene().sim.integrator, sim::IntegratorKind::kXpbd);
 }
 
 TEST_F(CommandIntakeTest, CommandsWithoutAClientIdAreRejected) {
