@@ -74,7 +74,7 @@ status_t MakeStatusMessage(const Session& session, const ServerStats& stats, con
   message.num_nodes = simulation.model().num_nodes();
   message.threads = simulation.params().threads;
   message.integrator = sim::IntegratorName(simulation.params().integrator);
-  message.sleeping = false;
+  message.sleeping = simulation.sleeping();
   message.step_time_us = mean_us(stats.step_seconds, stats.steps);
   message.publish_time_us = mean_us(stats.publish_seconds, stats.states_published);
   message.state_rate_hz = per_second(double(stats.states_published));

@@ -45,7 +45,9 @@ double Server::Tick(double now) {
   PublishDue(now);
   FrameDue();
   if (options_.fast) return 0;
-  const double until_step = session_.scene().sim.dt - accumulator_;
+  // Asleep, steps only move the clock: take them in batches and let the machine rest.
+  const double until_step =
+      session_.simulation().sleeping() ? kMaxWait : session_.scene().sim.dt - accumulator_;
   return std::clamp(std::min(until_step, next_second_ - now), 0.0, kMaxWait);
 }
 
@@ -79,7 +81,9 @@ void Server::AfterStep() {
   const double time = session_.simulation().state().time;
   if (time >= next_state_time_) {
     PublishState();
-    next_state_time_ = std::max(next_state_time_ + 1.0 / session_.scene().service.state_rate, time);
+    // Asleep, the flag does not move: once a second says so.
+    const double rate = session_.simulation().sleeping() ? 1.0 : session_.scene().service.state_rate;
+    next_state_time_ = std::max(next_state_time_ + 1.0 / rate, time);
   }
   const double frame_rate = session_.scene().service.frame_rate;
   if (frame_rate > 0 && time >= next_frame_time_) {
@@ -116,6 +120,10 @@ void Server::PublishState() {
 void Server::FrameDue() {
   if (!frame_due_) return;  // due by the frame rate, or asked for by REFRESH (even at frame_rate 0)
   frame_due_ = false;
+  // Asleep, with nothing changed since a frame drawn asleep, a new frame would be the same.
+  const bool asleep = session_.simulation().sleeping();
+  if (asleep && drawn_asleep_ && drawn_revision_ == session_.revision() && !tiles_.keyframe_requested())
+    return;
   if (paced_.queued() > 0) {  // still sending the last frame: skip this one
     ++stats_.frames_skipped;
     return;
@@ -123,6 +131,8 @@ void Server::FrameDue() {
   const int threads = session_.scene().sim.threads;
   const double start = MonotonicSeconds();
   const render::Framebuffer& image = session_.RenderFrame(threads);
+  drawn_asleep_ = asleep;
+  drawn_revision_ = session_.revision();
   const double rendered = MonotonicSeconds();
   FrameInfo info;
   info.utime = UnixMicros();

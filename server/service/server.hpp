@@ -71,6 +71,8 @@ class Server {
   double next_frame_time_ = 0;  ///< s of simulated time when a frame is next due
   bool frame_due_ = false;
   bool integrator_replaced_ = false;  ///< by the guard: PARAMS is due
+  bool drawn_asleep_ = false;         ///< the last frame was drawn with the flag asleep
+  int64_t drawn_revision_ = -1;       ///< the session's revision when it was drawn
   double next_second_ = 0;            ///< s, monotonic, when PARAMS and STATUS are next due
   double window_sim_start_ = 0;       ///< simulated time at the last STATUS
   double window_wall_start_ = 0;      ///< wall time at the last STATUS

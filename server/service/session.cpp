@@ -15,6 +15,7 @@ std::string Session::ApplyWind(const sim::WindSettings& wind) {
   if (!problem.empty()) return problem;
   scene_.wind = wind;
   simulation_.SetWind(wind);
+  ++revision_;
   return "";
 }
 
@@ -44,6 +45,7 @@ std::string Session::ApplyParams(const ParamChange& change) {
     simulation_.SetWind(wind);
     simulation_.RestartFlag();
   }
+  ++revision_;
   return "";
 }
 
@@ -57,9 +59,12 @@ bool Session::Step() {
 std::string Session::ApplyCamera(const render::CameraMove& move) {
   if (move.operation == render::CameraMove::kReset) {
     scene_.camera = initial_.camera;
+    ++revision_;
     return "";
   }
-  return render::ApplyCameraMove(move, &scene_.camera);
+  const std::string problem = render::ApplyCameraMove(move, &scene_.camera);
+  if (problem.empty()) ++revision_;
+  return problem;
 }
 
 // state => flag mesh => frame

@@ -43,6 +43,9 @@ class Session {
   const render::Framebuffer& RenderFrame(int threads);
   const render::Framebuffer& frame() const { return framebuffer_; }
 
+  /// Counts accepted changes to what a frame shows (wind, parameters, camera).
+  int64_t revision() const { return revision_; }
+
   const Scene& scene() const { return scene_; }
   const Scene& initial_scene() const { return initial_; }
   const FlagSimulation& simulation() const { return simulation_; }
@@ -56,6 +59,7 @@ class Session {
   render::RenderScene render_scene_;
   render::Renderer renderer_;
   render::Framebuffer framebuffer_;
+  int64_t revision_ = 0;
 };
 
 }  // namespace flagsim

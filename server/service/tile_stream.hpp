@@ -51,6 +51,7 @@ class TileStream {
 
   /// Makes the next frame a keyframe answering `request_id` (the latest one, if several).
   void RequestKeyframe(int64_t request_id);
+  bool keyframe_requested() const { return keyframe_requested_; }
 
   /// The messages for `image`. Hashing and compression run on `threads` threads; the result
   /// does not depend on how many.

@@ -77,6 +77,7 @@ template <typename Real>
 void Simulation<Real>::SetParams(const SimParams& params) {
   const bool regrid = GridChanged(params, params_);
   params_ = params;
+  Wake();
   if (regrid) {
     model_ = BuildClothModel<Real>(params_);
   } else {
@@ -90,6 +91,7 @@ void Simulation<Real>::SetParams(const SimParams& params) {
 template <typename Real>
 void Simulation<Real>::SetWind(const WindSettings& wind) {
   wind_.Set(wind, state_.time);
+  Wake();
   integrator_->Reset();
   Checkpoint();  // a rollback must not replay earlier steps under the new wind
 }
@@ -101,21 +103,61 @@ void Simulation<Real>::RestartFlag() {
   state_ = RestState(model_);
   state_.time = time;
   state_.step = step;
+  Wake();
   integrator_->Reset();
   Checkpoint();
 }
 
 template <typename Real>
 void Simulation<Real>::Step() {
+  if (sleeping_) {
+    state_.time += params_.dt;
+    ++state_.step;
+    return;
+  }
   if (state_.step % kCheckpointInterval == 0) Checkpoint();
   Advance();
-  const std::string problem = Problem();
+  double fastest = 0;
+  const std::string problem = Problem(&fastest);
   if (!problem.empty()) {
     Recover(problem);
-  } else if (guard_factor_ > 1 && ++good_steps_ >= 64 * kCheckpointInterval) {
+    calm_steps_ = 0;
+    return;
+  }
+  if (guard_factor_ > 1 && ++good_steps_ >= 64 * kCheckpointInterval) {
     guard_factor_ /= 2;  // the trouble has passed: relax towards the stability limit
     good_steps_ = 0;
   }
+  WatchForSleep(fastest);
+}
+
+// Calm air: every kStepsToSleep steps, compare the pose with the one at the start of the run.
+template <typename Real>
+void Simulation<Real>::WatchForSleep(double fastest) {
+  const Vec3 mean = wind_.Mean(state_.time), target = wind_.target().velocity;
+  if (!(mean == Vec3{0, 0, 0} && target == Vec3{0, 0, 0})) {
+    calm_steps_ = 0;
+    return;
+  }
+  if (calm_steps_ == 0) {
+    calm_x_ = state_.x;
+    calm_y_ = state_.y;
+    calm_z_ = state_.z;
+  }
+  if (++calm_steps_ < kStepsToSleep) return;
+  calm_steps_ = 0;
+  Real farthest = 0;
+  for (int i = 0; i < state_.num_nodes(); ++i) {
+    farthest = std::max({farthest, std::abs(state_.x[i] - calm_x_[i]), std::abs(state_.y[i] - calm_y_[i]),
+                         std::abs(state_.z[i] - calm_z_[i])});
+  }
+  sleeping_ = farthest < Real(kSleepDistance) && fastest < kSleepSpeed;
+}
+
+template <typename Real>
+void Simulation<Real>::Wake() {
+  sleeping_ = false;
+  calm_steps_ = 0;
 }
 
 template <typename Real>
@@ -129,7 +171,7 @@ void Simulation<Real>::Advance() {
 }
 
 template <typename Real>
-std::string Simulation<Real>::Problem() const {
+std::string Simulation<Real>::Problem(double* fastest_out) const {
   // A NaN or infinity anywhere poisons the sum; a blow-up in progress shows as a huge speed
   // or a spring pulled far past its length.
   Real sum = 0, fastest = 0;
@@ -141,6 +183,7 @@ std::string Simulation<Real>::Problem() const {
     sum += x[i] + y[i] + z[i] + vx[i] + vy[i] + vz[i];
     fastest = std::max(fastest, std::max(std::abs(vx[i]), std::max(std::abs(vy[i]), std::abs(vz[i]))));
   }
+  if (fastest_out != nullptr) *fastest_out = double(fastest);
   if (!std::isfinite(sum)) return "non-finite positions or velocities";
   if (fastest >= Real(kRunawaySpeed)) return Format("a node at %.3g m/s", fastest);
   const Real stretch_squared = LargestStretchSquared(model_, state_);

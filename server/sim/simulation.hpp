@@ -9,11 +9,16 @@
 //                kMaxGuardFactor an explicit integrator gives way to an unconditionally stable
 //                one, and an integrator that is already stable restarts the flag at rest. The
 //                flag never leaves a step bad, and what happened is kept as a GuardEvent.
+//   sleep        a flag in calm air that moved less than kSleepDistance over kStepsToSleep
+//                steps and is slower than kSleepSpeed sleeps: its steps only move the clock. Any new wind,
+//                parameters or a restart wake it. Whether it sleeps depends on the state alone, so a replay
+//                sleeps and wakes at the same steps.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cloth_model.hpp"
 #include "cloth_state.hpp"
@@ -46,6 +51,11 @@ class Simulation {
   static constexpr int kMaxGuardFactor = 16;
   /// Where an explicit integrator goes when even kMaxGuardFactor times the substeps fail.
   static constexpr IntegratorKind kStableFallback = IntegratorKind::kXpbd;
+  // Float rounding alone keeps the stiffest modes of a resting flag jittering at about 1e-3 m/s
+  // (measured, 32 x 24 flag) around a fixed pose, so sleep is judged by how far nodes went.
+  static constexpr int kStepsToSleep = 256;       ///< steps of calm air watched
+  static constexpr double kSleepDistance = 1e-3;  ///< m: no node moved farther over them
+  static constexpr double kSleepSpeed = 1e-2;     ///< m/s: and none is faster at the end
 
   Simulation(const SimParams& params, const WindSettings& wind, uint64_t seed = 1);
 
@@ -67,13 +77,16 @@ class Simulation {
   int substeps() const { return substeps_ * guard_factor_; }
   int64_t recoveries() const { return recoveries_; }
   const GuardEvent& last_guard_event() const { return last_event_; }
+  bool sleeping() const { return sleeping_; }
   uint64_t Hash() const { return StateHash(state_); }
 
  private:
   void ChooseIntegrator();
   void Advance();
-  /// "" if the state is sound, else what is wrong with it.
-  std::string Problem() const;
+  /// "" if the state is sound, else what is wrong with it; `fastest` gets the top node speed.
+  std::string Problem(double* fastest = nullptr) const;
+  void WatchForSleep(double fastest);
+  void Wake();
   void Recover(const std::string& problem);
   bool Escalate(int64_t lost, GuardEvent* event);
   void Checkpoint() { checkpoint_ = state_; }
@@ -90,6 +103,9 @@ class Simulation {
   int64_t recoveries_ = 0;
   int64_t good_steps_ = 0;  ///< since the last recovery
   GuardEvent last_event_;
+  int calm_steps_ = 0;                          ///< steps in a row in calm air, up to kStepsToSleep
+  std::vector<Real> calm_x_, calm_y_, calm_z_;  ///< positions when the calm began
+  bool sleeping_ = false;
 };
 
 }  // namespace flagsim::sim

@@ -94,5 +94,40 @@ TEST(Simulation, GoldenStateHash) {
   EXPECT_EQ(simulation.Hash(), kGoldenBreezeHash) << std::hex << "0x" << simulation.Hash();
 }
 
+// Still air and a damped flag: it comes to rest and falls asleep; asleep, its steps only move
+// the clock; a breath of wind wakes it at once.
+TEST(Simulation, AFlagAtRestInCalmAirSleepsAndWindWakesIt) {
+  SimParams params;
+  params.friction = 5.0;
+  Simulation<float> simulation(params, testing::NoWind());
+  int steps = 0;
+  while (!simulation.sleeping() && steps < 20000) {
+    simulation.Step();
+    ++steps;
+  }
+  ASSERT_TRUE(simulation.sleeping()) << "after " << steps << " steps";
+  EXPECT_GE(steps, Simulation<float>::kStepsToSleep);
+  const uint64_t asleep = simulation.Hash();
+  const double time = simulation.state().time;
+  for (int i = 0; i < 100; ++i) simulation.Step();
+  EXPECT_EQ(simulation.Hash(), asleep);
+  EXPECT_EQ(simulation.state().step, steps + 100);
+  EXPECT_NEAR(simulation.state().time, time + 100 * params.dt, 1e-9);
+
+  simulation.SetWind(WindSettings{{0.5, 0.0, 0.0}, 0.0, 0.0});
+  EXPECT_FALSE(simulation.sleeping());
+  simulation.Step();
+  EXPECT_NE(simulation.Hash(), asleep);
+}
+
+// Wind, even light, keeps the flag awake.
+TEST(Simulation, AFlagInWindNeverSleeps) {
+  Simulation<float> simulation(SimParams{}, WindSettings{{0.2, 0.0, 0.0}, 0.0, 0.0});
+  for (int i = 0; i < 3000; ++i) {
+    simulation.Step();
+    ASSERT_FALSE(simulation.sleeping()) << "at step " << i;
+  }
+}
+
 }  // namespace
 }  // namespace flagsim::sim
