@@ -9,6 +9,10 @@ std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind) {
       return MakeSymplecticEuler<Real>(false);
     case IntegratorKind::kSeed:
       return MakeSymplecticEuler<Real>(true);
+    case IntegratorKind::kImplicitEuler:
+      return MakeImplicitEuler<Real>();
+    case IntegratorKind::kProjectiveDynamics:
+      return MakeProjectiveDynamics<Real>();
   }
   return nullptr;
 }
@@ -16,7 +20,7 @@ template std::unique_ptr<Integrator<float>> MakeIntegrator<float>(IntegratorKind
 template std::unique_ptr<Integrator<double>> MakeIntegrator<double>(IntegratorKind);
 
 const std::vector<std::string>& IntegratorNames() {
-  static const std::vector<std::string> names = {"symplectic_euler", "seed"};
+  static const std::vector<std::string> names = {"symplectic_euler", "seed", "implicit_euler", "projective"};
   return names;
 }
 

@@ -43,6 +43,10 @@ std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind);
 // Each integrator's own factory, defined in its file; MakeIntegrator picks one.
 template <typename Real>
 std::unique_ptr<Integrator<Real>> MakeSymplecticEuler(bool seed_friction);
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeImplicitEuler();
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeProjectiveDynamics();
 
 /// Names as PARAM and scene files spell them, in IntegratorKind order.
 const std::vector<std::string>& IntegratorNames();

@@ -8,6 +8,10 @@ namespace flagsim::sim {
 enum class IntegratorKind {
   kSymplecticEuler,  ///< v += h a(x, v); x += h v. Order 1, stable for h < 2 / w_max.
   kSeed,             ///< the seed's scheme: symplectic Euler with friction -mu F (mu a fraction)
+  /// Linearised backward Euler, conjugate gradient. Order 1, unconditionally stable.
+  kImplicitEuler,
+  /// Liu et al. 2013 local/global springs on one factorisation. Order 1, unconditionally stable.
+  kProjectiveDynamics,
 };
 
 struct SimParams {
