@@ -17,6 +17,10 @@ std::unique_ptr<Integrator<Real>> MakeIntegrator(IntegratorKind kind) {
       return MakeRk4<Real>();
     case IntegratorKind::kXpbd:
       return MakeXpbd<Real>();
+    case IntegratorKind::kImplicitEuler:
+      return MakeImplicitEuler<Real>();
+    case IntegratorKind::kProjectiveDynamics:
+      return MakeProjectiveDynamics<Real>();
   }
   return nullptr;
 }
@@ -24,8 +28,8 @@ template std::unique_ptr<Integrator<float>> MakeIntegrator<float>(IntegratorKind
 template std::unique_ptr<Integrator<double>> MakeIntegrator<double>(IntegratorKind);
 
 const std::vector<std::string>& IntegratorNames() {
-  static const std::vector<std::string> names = {"symplectic_euler", "seed", "explicit_euler",
-                                                 "verlet",           "rk4",  "xpbd"};
+  static const std::vector<std::string> names = {
+      "symplectic_euler", "seed", "explicit_euler", "verlet", "rk4", "xpbd", "implicit_euler", "projective"};
   return names;
 }
 

@@ -51,6 +51,10 @@ template <typename Real>
 std::unique_ptr<Integrator<Real>> MakeRk4();
 template <typename Real>
 std::unique_ptr<Integrator<Real>> MakeXpbd();
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeImplicitEuler();
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeProjectiveDynamics();
 
 /// Names as PARAM and scene files spell them, in IntegratorKind order.
 const std::vector<std::string>& IntegratorNames();

@@ -6,12 +6,14 @@
 namespace flagsim::sim {
 
 enum class IntegratorKind {
-  kSymplecticEuler,  ///< v += h a(x, v); x += h v. Order 1, stable for h < 2 / w_max.
-  kSeed,             ///< the seed's scheme: symplectic Euler with friction -mu F (mu a fraction)
-  kExplicitEuler,    ///< x += h v; v += h a(x, v). Order 1, stable only with enough damping.
-  kVelocityVerlet,   ///< kick, drift, kick. Order 2, stable for h < 2 / w_max.
-  kRk4,              ///< classic Runge-Kutta. Order 4, four force evaluations, h < 2.6 / w_max.
-  kXpbd,             ///< springs as compliant constraints, Gauss-Seidel. Unconditionally stable.
+  kSymplecticEuler,     ///< v += h a(x, v); x += h v. Order 1, stable for h < 2 / w_max.
+  kSeed,                ///< the seed's scheme: symplectic Euler with friction -mu F (mu a fraction)
+  kExplicitEuler,       ///< x += h v; v += h a(x, v). Order 1, stable only with enough damping.
+  kVelocityVerlet,      ///< kick, drift, kick. Order 2, stable for h < 2 / w_max.
+  kRk4,                 ///< classic Runge-Kutta. Order 4, four force evaluations, h < 2.6 / w_max.
+  kXpbd,                ///< springs as compliant constraints, Gauss-Seidel. Unconditionally stable.
+  kImplicitEuler,       ///< linearised backward Euler by conjugate gradient. Unconditionally stable.
+  kProjectiveDynamics,  ///< Liu et al. 2013 local/global, one factorisation. Unconditionally stable.
 };
 
 struct SimParams {

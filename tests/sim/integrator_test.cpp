@@ -61,7 +61,8 @@ INSTANTIATE_TEST_SUITE_P(All, OrderTest,
                                            OrderCase{IntegratorKind::kSymplecticEuler, 1},
                                            OrderCase{IntegratorKind::kVelocityVerlet, 2},
                                            OrderCase{IntegratorKind::kRk4, 4},
-                                           OrderCase{IntegratorKind::kXpbd, 1}),
+                                           OrderCase{IntegratorKind::kXpbd, 1},
+                                           OrderCase{IntegratorKind::kImplicitEuler, 1}),
                          [](const auto& info) { return IntegratorName(info.param.kind); });
 
 class EveryIntegrator : public ::testing::TestWithParam<IntegratorKind> {};
@@ -122,7 +123,9 @@ TEST_P(EveryIntegrator, SameStateAtAnyThreadCount) {
 INSTANTIATE_TEST_SUITE_P(All, EveryIntegrator,
                          ::testing::Values(IntegratorKind::kSymplecticEuler, IntegratorKind::kSeed,
                                            IntegratorKind::kExplicitEuler, IntegratorKind::kVelocityVerlet,
-                                           IntegratorKind::kRk4, IntegratorKind::kXpbd),
+                                           IntegratorKind::kRk4, IntegratorKind::kXpbd,
+                                           IntegratorKind::kImplicitEuler,
+                                           IntegratorKind::kProjectiveDynamics),
                          [](const auto& info) { return IntegratorName(info.param); });
 
 TEST(IntegratorNames, OnePerKindInOrder) {

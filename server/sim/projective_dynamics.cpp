@@ -1,0 +1,216 @@
+// Projective dynamics for mass-spring systems (Liu, Bargteil, O'Brien and Kavan 2013, "Fast
+// simulation of mass-spring systems"): backward Euler solved by local/global iterations.
+//
+// The physics it steps:
+//   M (x' - x - h v) / h^2 = f_s(x') + f_ext - friction M v' - C v',   v' = (x' - x) / h
+// f_s the springs' elastic forces k (|d| - L) u as in forces.hpp; f_ext gravity and wind, both at
+// (x, v, t) (relative wind sees v), held through the step; friction at the end of the step (as
+// forces.hpp's law, but implicit). C is an isotropic damping Laplacian: each spring pulls its ends
+// with c (v'_b - v'_a), where forces.hpp has c ((v_b - v_a) . u) u. So relative motion across a
+// spring (bending waves, a spring's rotation) is damped as much as its stretching, more than the
+// force law damps it; with c = 0 the two agree. Converged, the step is backward Euler on that
+// system; with params.solver_iterations iterations it is the iterate after that many, which
+// leaves stiff springs somewhat softer than k (the method's known artefact).
+//
+// One substep, in displacements dx = x' - x (pinned nodes have dx = 0):
+//   q = x + h v, the first iterate
+//   repeat params.solver_iterations times:
+//     local   per spring a -> b: p = L (q_b - q_a) / |q_b - q_a|, the spring at rest length along
+//             the iterate, and t = k (d - p) with d = x_b - x_a, the start of the step
+//     global  A dx = h M v + h^2 f_ext + h^2 J t,  (J t)_a = sum of t over springs from a minus
+//             sum over springs into a;  q = x + dx
+//   x' = q, v' = dx / h
+// with A = (1 + h friction) M + h C + h^2 L (spring_laplacian.hpp), constant over steps and so
+// factorised once. This is Liu et al.'s global step A x' = M y + h friction M x + h C x + h^2 J p
+// (f_s(x') ~ J p - L x', y = x + h v + h^2 M^-1 f_ext) with A x subtracted from both sides:
+// friction and damping act on dx alone, and J t = J p - L x. Each iteration lowers the step's
+// objective; starting from x + h v (not y) makes a state at rest after a step one the iteration
+// cannot lower, so rest states are exact force balances (f_s + f_ext = 0) even with few
+// iterations. Starting from y, a stiff flag would come to rest short of its equilibrium.
+// Springs and gathers run row-parallel with each node summing its own springs in a fixed order;
+// the solve runs one coordinate per thread: results do not depend on the thread count.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "integrator.hpp"
+#include "spring_laplacian.hpp"
+#include "spring_runs.hpp"
+
+namespace flagsim::sim {
+namespace {
+
+/// m: the shortest length divided by; a shorter spring's target is 0.
+constexpr float kShortest = 1e-9f;
+
+/// Springs a -> a + offset for a in [begin, end): t = k (d - L e / |e|), d from the step's start
+/// positions (x, y, z), e from the iterate (px, py, pz).
+template <typename Real>
+void SpringTargetKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
+                        const Real* __restrict px, const Real* __restrict py, const Real* __restrict pz,
+                        Real* __restrict tx, Real* __restrict ty, Real* __restrict tz, int begin, int end,
+                        int offset, Real k, Real rest) {
+  for (int a = begin; a < end; ++a) {
+    const int b = a + offset;
+    const Real ex = px[b] - px[a], ey = py[b] - py[a], ez = pz[b] - pz[a];
+    const Real scale = rest / std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortest));
+    tx[a] = k * ((x[b] - x[a]) - scale * ex);
+    ty[a] = k * ((y[b] - y[a]) - scale * ey);
+    tz[a] = k * ((z[b] - z[a]) - scale * ez);
+  }
+}
+
+/// out[a] += sign t[a + shift] for a in [begin, end).
+template <typename Real>
+void GatherKernel(const Real* __restrict tx, const Real* __restrict ty, const Real* __restrict tz,
+                  Real* __restrict outx, Real* __restrict outy, Real* __restrict outz, int begin, int end,
+                  int shift, Real sign) {
+  for (int a = begin; a < end; ++a) {
+    outx[a] += sign * tx[a + shift];
+    outy[a] += sign * ty[a + shift];
+    outz[a] += sign * tz[a + shift];
+  }
+}
+
+template <typename Real>
+class ProjectiveDynamics : public Integrator<Real> {
+ public:
+  void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) override {
+    const ClothModel<Real>& model = context.model;
+    const SimParams& params = context.params;
+    laplacian_.Prepare(model, h, AirFriction(params));
+    ExternalForces(context, *state);
+    Predict(model, params, *state, Real(h));
+    for (int i = 0; i < params.solver_iterations; ++i) {
+      if (i > 0) MoveIterate(model, *state, params.threads);
+      RightHandSide(model, params, *state, Real(h));
+      laplacian_.Solve(rhs_, params.threads, &displacement_);
+    }
+    Finish(model, Real(h), params.threads, state);
+    state->time += h;
+  }
+
+  double StableStep(const FrequencyBound&) const override { return std::numeric_limits<double>::infinity(); }
+
+  void Reset() override { laplacian_.Clear(); }
+
+ private:
+  /// Gravity and wind at the step's start: every force but the springs' and friction.
+  void ExternalForces(const StepContext<Real>& context, const ClothState<Real>& state) {
+    external_model_ = context.model;
+    external_model_.families.clear();
+    external_params_ = context.params;
+    external_params_.friction = 0;
+    context.evaluator.Evaluate(external_model_, external_params_, context.wind, state, state.time, &forces_);
+  }
+
+  /// The first iterate x + h v, and the constant part of the right-hand side, h M v + h^2 f_ext
+  /// (0 at pinned nodes).
+  void Predict(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
+               Real h) {
+    const int n = model.num_nodes();
+    iterate_.Resize(n);
+    momentum_.Resize(n);
+    rhs_.Resize(n);
+    targets_.resize(model.families.size());
+    for (NodeVectors<Real>& family : targets_) family.Resize(n);
+#pragma omp parallel for schedule(static) num_threads(params.threads) if (params.threads > 1)
+    for (int i = 0; i < n; ++i) {
+      const Real free = model.pinned(i) ? Real(0) : Real(1);
+      momentum_.x[i] = free * (h * model.mass[i] * state.vx[i] + h * h * forces_.x[i]);
+      momentum_.y[i] = free * (h * model.mass[i] * state.vy[i] + h * h * forces_.y[i]);
+      momentum_.z[i] = free * (h * model.mass[i] * state.vz[i] + h * h * forces_.z[i]);
+      iterate_.x[i] = state.x[i] + h * state.vx[i];
+      iterate_.y[i] = state.y[i] + h * state.vy[i];
+      iterate_.z[i] = state.z[i] + h * state.vz[i];
+    }
+  }
+
+  /// Local step (every spring's t at the iterate), then each row gathers h M v + h^2 f_ext + h^2 J t.
+  void RightHandSide(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
+                     Real h) {
+    const int rows = model.rows;
+#pragma omp parallel num_threads(params.threads) if (params.threads > 1)
+    {
+#pragma omp for schedule(static)
+      for (int r = 0; r < rows; ++r) TargetRow(model, state, r);
+#pragma omp for schedule(static)
+      for (int r = 0; r < rows; ++r) GatherRow(model, h, r);
+    }
+  }
+
+  void TargetRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r) {
+    for (size_t f = 0; f < model.families.size(); ++f) {
+      const SpringFamily<Real>& family = model.families[f];
+      if (r + family.dr >= model.rows) continue;
+      NodeVectors<Real>& t = targets_[f];
+      SpringTargetKernel(state.x.data(), state.y.data(), state.z.data(), iterate_.x.data(), iterate_.y.data(),
+                         iterate_.z.data(), t.x.data(), t.y.data(), t.z.data(),
+                         model.index(r, family.first_col()), model.index(r, family.end_col(model.cols)),
+                         family.dr * model.cols + family.dc, family.stiffness, family.rest_length);
+    }
+  }
+
+  void GatherRow(const ClothModel<Real>& model, Real h, int r) {
+    const int row = r * model.cols, end = row + model.cols;
+    std::fill(rhs_.x.begin() + row, rhs_.x.begin() + end, Real(0));
+    std::fill(rhs_.y.begin() + row, rhs_.y.begin() + end, Real(0));
+    std::fill(rhs_.z.begin() + row, rhs_.z.begin() + end, Real(0));
+    ForEachSpringRun(model, r, [&](const SpringRun& run) {
+      const NodeVectors<Real>& t = targets_[run.family];
+      GatherKernel(t.x.data(), t.y.data(), t.z.data(), rhs_.x.data(), rhs_.y.data(), rhs_.z.data(), run.begin,
+                   run.end, run.spring_shift, run.first ? Real(1) : Real(-1));
+    });
+    for (int i = row; i < end; ++i) {
+      const Real free = model.pinned(i) ? Real(0) : Real(1);
+      rhs_.x[i] = momentum_.x[i] + free * h * h * rhs_.x[i];
+      rhs_.y[i] = momentum_.y[i] + free * h * h * rhs_.y[i];
+      rhs_.z[i] = momentum_.z[i] + free * h * h * rhs_.z[i];
+    }
+  }
+
+  /// The next iterate, x + dx, at free nodes.
+  void MoveIterate(const ClothModel<Real>& model, const ClothState<Real>& state, int threads) {
+    const int n = model.num_nodes();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (int i = 0; i < n; ++i) {
+      if (model.pinned(i)) continue;
+      iterate_.x[i] = state.x[i] + displacement_.x[i];
+      iterate_.y[i] = state.y[i] + displacement_.y[i];
+      iterate_.z[i] = state.z[i] + displacement_.z[i];
+    }
+  }
+
+  /// x' = x + dx, v' = dx / h at free nodes.
+  void Finish(const ClothModel<Real>& model, Real h, int threads, ClothState<Real>* state) const {
+    const int n = model.num_nodes();
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (int i = 0; i < n; ++i) {
+      if (model.pinned(i)) continue;
+      state->x[i] += displacement_.x[i];
+      state->y[i] += displacement_.y[i];
+      state->z[i] += displacement_.z[i];
+      state->vx[i] = displacement_.x[i] / h;
+      state->vy[i] = displacement_.y[i] / h;
+      state->vz[i] = displacement_.z[i] / h;
+    }
+  }
+
+  SpringLaplacian<Real> laplacian_;
+  ClothModel<Real> external_model_;  ///< the model without springs
+  SimParams external_params_;        ///< the parameters without friction
+  NodeForces<Real> forces_;          ///< f_ext
+  NodeVectors<Real> iterate_, momentum_, rhs_, displacement_;
+  std::vector<NodeVectors<Real>> targets_;  ///< t per spring, per family, at the spring's first node
+};
+
+}  // namespace
+
+template <typename Real>
+std::unique_ptr<Integrator<Real>> MakeProjectiveDynamics() {
+  return std::make_unique<ProjectiveDynamics<Real>>();
+}
+template std::unique_ptr<Integrator<float>> MakeProjectiveDynamics<float>();
+template std::unique_ptr<Integrator<double>> MakeProjectiveDynamics<double>();
+
+}  // namespace flagsim::sim
