@@ -1,27 +1,54 @@
 #include "trajectory.hpp"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "sim/cloth_model.hpp"
 #include "sim/forces.hpp"
 #include "sim/integrator.hpp"
 
 namespace flagsim::lab {
+namespace {
 
-sim::ClothState<double> RunFixed(const Trial& trial, int substeps) {
-  const sim::ClothModel<double> model = sim::BuildClothModel<double>(trial.params);
+double ThreadCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+}
+
+constexpr int kSoundnessInterval = 64;  ///< substeps between checks for a blow-up
+
+}  // namespace
+
+template <typename Real>
+sim::ClothState<Real> RunFixed(const Trial& trial, int substeps) {
+  const sim::ClothModel<Real> model = sim::BuildClothModel<Real>(trial.params);
   const sim::WindField wind(trial.wind, trial.seed);
-  sim::ForceEvaluator<double> evaluator;
-  const auto integrator = sim::MakeIntegrator<double>(trial.params.integrator);
-  const sim::StepContext<double> context{model, trial.params, wind, evaluator};
-  sim::ClothState<double> state = sim::RestState(model);
+  sim::ForceEvaluator<Real> evaluator;
+  const auto integrator = sim::MakeIntegrator<Real>(trial.params.integrator);
+  const sim::StepContext<Real> context{model, trial.params, wind, evaluator};
+  sim::ClothState<Real> state = sim::RestState(model);
   const double h = trial.horizon / substeps;
   for (int i = 0; i < substeps; ++i) {
     integrator->Substep(context, h, &state);
     state.time = (i + 1) * h;  // no drift of the clock from repeated sums
+    if (i % kSoundnessInterval == 0 && !StateIsSound(state)) break;
   }
   return state;
+}
+
+double CostPerSimulatedSecond(const Trial& trial, int substeps, int repeats) {
+  std::vector<double> seconds;
+  for (int i = 0; i < repeats; ++i) {
+    const double start = ThreadCpuSeconds();
+    RunFixed<float>(trial, substeps);
+    seconds.push_back(ThreadCpuSeconds() - start);
+  }
+  std::nth_element(seconds.begin(), seconds.begin() + seconds.size() / 2, seconds.end());
+  return seconds[seconds.size() / 2] / trial.horizon;
 }
 
 double RmsDistance(const sim::ClothState<double>& a, const sim::ClothState<double>& b) {
@@ -34,13 +61,20 @@ double RmsDistance(const sim::ClothState<double>& a, const sim::ClothState<doubl
   return n > 0 ? std::sqrt(sum / n) : 0.0;
 }
 
-bool StateIsSound(const sim::ClothState<double>& state, double runaway) {
+template <typename Real>
+bool StateIsSound(const sim::ClothState<Real>& state) {
   for (int i = 0; i < state.num_nodes(); ++i) {
     const double values[6] = {state.x[i], state.y[i], state.z[i], state.vx[i], state.vy[i], state.vz[i]};
     if (!std::all_of(values, values + 6, [](double v) { return std::isfinite(v); })) return false;
-    if (std::max({std::abs(values[3]), std::abs(values[4]), std::abs(values[5])}) > runaway) return false;
+    const double speed_squared = values[3] * values[3] + values[4] * values[4] + values[5] * values[5];
+    if (speed_squared > kRunawaySpeed * kRunawaySpeed) return false;
   }
   return true;
 }
+
+template sim::ClothState<float> RunFixed<float>(const Trial&, int);
+template sim::ClothState<double> RunFixed<double>(const Trial&, int);
+template bool StateIsSound<float>(const sim::ClothState<float>&);
+template bool StateIsSound<double>(const sim::ClothState<double>&);
 
 }  // namespace flagsim::lab

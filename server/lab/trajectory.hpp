@@ -1,6 +1,6 @@
 // The lab's unit of work: one flag run from rest for a fixed time with one integrator at a
-// fixed substep (no automatic substeps, no guard), and the distance between two such runs.
-// Everything in double precision, so that what is measured is the method, not the rounding.
+// fixed substep (no automatic substeps, no guard), and what can be said about the result: its
+// distance from another run, whether it stayed sound, what it cost.
 #pragma once
 
 #include <cstdint>
@@ -20,13 +20,22 @@ struct Trial {
 };
 
 /// The state after trial.horizon seconds from rest, in `substeps` equal substeps of
-/// trial.params.integrator.
-sim::ClothState<double> RunFixed(const Trial& trial, int substeps);
+/// trial.params.integrator. A run that goes unsound (StateIsSound) stops there.
+template <typename Real>
+sim::ClothState<Real> RunFixed(const Trial& trial, int substeps);
+
+/// Seconds of this thread's CPU time to do RunFixed<float> (what the server pays), the median of
+/// `repeats` runs, over trial.horizon: the cost per simulated second.
+double CostPerSimulatedSecond(const Trial& trial, int substeps, int repeats);
 
 /// m: root mean square over nodes of the distance between the nodes of a and b.
 double RmsDistance(const sim::ClothState<double>& a, const sim::ClothState<double>& b);
 
-/// True if every coordinate and velocity is finite and no node is faster than `runaway` m/s.
-bool StateIsSound(const sim::ClothState<double>& state, double runaway);
+/// Any node faster than this (m/s) is taken for a blow-up.
+constexpr double kRunawaySpeed = 100.0;
+
+/// True if every coordinate and velocity is finite and no node is faster than kRunawaySpeed.
+template <typename Real>
+bool StateIsSound(const sim::ClothState<Real>& state);
 
 }  // namespace flagsim::lab

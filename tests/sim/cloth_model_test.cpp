@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "lab/stability.hpp"
+
 namespace flagsim::sim {
 namespace {
 
@@ -64,8 +66,9 @@ TEST(ClothModel, RefiningTheGridKeepsTheSheetAsStiff) {
 }
 
 TEST(ClothModel, FrequencyBoundHoldsForTheLowestOrderCase) {
-  // One free node on one spring (2 x 1 grid, structural only): w^2 = k / m exactly; the bound
-  // (2 sum k / m) is twice that.
+  // 2 x 2 grid, structural springs only, column 0 pinned: along x each free node is on its own
+  // horizontal spring (w^2 = k_h / m); along y the two free nodes share the vertical spring
+  // (w^2 = 2 k_v / m). Gershgorin's 2 (k_h + k_v) / m is looser; the estimate must lie between.
   SimParams params;
   params.cols = 2;
   params.rows = 2;
@@ -73,9 +76,26 @@ TEST(ClothModel, FrequencyBoundHoldsForTheLowestOrderCase) {
   params.bend_stiffness = 0;
   const ClothModel<double> model = BuildClothModel<double>(params);
   const FrequencyBound bound = EstimateFrequencyBound(model, 0.0);
-  // node (0,1): one horizontal and one vertical spring, mass m/4
-  const double k_sum = model.families[0].stiffness + model.families[1].stiffness;
-  EXPECT_NEAR(bound.omega_squared, 2 * k_sum * model.inverse_mass[1], 1e-9 * bound.omega_squared);
+  const double k_h = model.families[0].stiffness, k_v = model.families[1].stiffness;
+  const double exact = std::max(k_h, 2 * k_v) * model.inverse_mass[1];
+  EXPECT_GE(bound.omega_squared, exact);
+  EXPECT_LE(bound.omega_squared, 2 * (k_h + k_v) * model.inverse_mass[1]);
+}
+
+// Against a dense eigensolve: never below the highest frequency, never far above it.
+TEST(ClothModel, FrequencyBoundIsAnUpperBoundAndTight) {
+  for (const int cols : {3, 8, 16, 24}) {
+    for (const double shear : {0.0, 0.1, 1.0}) {
+      SimParams params;
+      params.cols = cols;
+      params.rows = std::max(2, cols * 3 / 4);
+      params.shear_stiffness = shear * params.stiffness;
+      const double exact = lab::HighestFrequency(params);
+      const FrequencyBound bound = EstimateFrequencyBound(BuildClothModel<double>(params), 0.0);
+      EXPECT_GE(bound.omega_squared, exact * exact) << cols << " cols, shear " << shear;
+      EXPECT_LE(bound.omega_squared, 1.3 * exact * exact) << cols << " cols, shear " << shear;
+    }
+  }
 }
 
 }  // namespace

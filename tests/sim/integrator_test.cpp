@@ -43,11 +43,11 @@ TEST_P(OrderTest, ErrorFallsAtTheMethodsOrder) {
   constexpr int kCoarse = 64;
   const lab::Trial trial = SoftFlag(GetParam().kind);
   const lab::Trial reference_trial = SoftFlag(IntegratorKind::kRk4);
-  const ClothState<double> reference = lab::RunFixed(reference_trial, 4 * kCoarse * 64);
+  const ClothState<double> reference = lab::RunFixed<double>(reference_trial, 4 * kCoarse * 64);
   const double reference_error =
-      lab::RmsDistance(reference, lab::RunFixed(reference_trial, 4 * kCoarse * 32));
+      lab::RmsDistance(reference, lab::RunFixed<double>(reference_trial, 4 * kCoarse * 32));
   double errors[3];
-  for (int k = 0; k < 3; ++k) errors[k] = lab::RmsDistance(lab::RunFixed(trial, kCoarse << k), reference);
+  for (int k = 0; k < 3; ++k) errors[k] = lab::RmsDistance(lab::RunFixed<double>(trial, kCoarse << k), reference);
   EXPECT_LT(reference_error, 1e-3 * errors[2]);
   const double slope = std::log2(errors[1] / errors[2]);
   EXPECT_NEAR(slope, GetParam().order, 0.25)
@@ -79,20 +79,20 @@ TEST_P(EveryIntegrator, ClaimedStableStepIsStable) {
   const double limit = MakeIntegrator<double>(GetParam())
                            ->StableStep(EstimateFrequencyBound(model, AirFriction(trial.params)));
   if (!std::isfinite(limit)) {  // unconditionally stable: try a large step
-    const ClothState<double> state = lab::RunFixed(trial, 20);
-    EXPECT_TRUE(lab::StateIsSound(state, 100.0));
+    const ClothState<double> state = lab::RunFixed<double>(trial, 20);
+    EXPECT_TRUE(lab::StateIsSound(state));
     return;
   }
   const auto steps_for = [&](double h) { return static_cast<int>(std::ceil(trial.horizon / h)); };
-  EXPECT_TRUE(lab::StateIsSound(lab::RunFixed(trial, steps_for(limit)), 100.0)) << "h = " << limit;
-  EXPECT_FALSE(lab::StateIsSound(lab::RunFixed(trial, steps_for(4 * limit)), 100.0)) << "h = " << 4 * limit;
+  EXPECT_TRUE(lab::StateIsSound(lab::RunFixed<double>(trial, steps_for(limit)))) << "h = " << limit;
+  EXPECT_FALSE(lab::StateIsSound(lab::RunFixed<double>(trial, steps_for(4 * limit)))) << "h = " << 4 * limit;
 }
 
 // The hoist edge stays where it was pinned, at zero velocity.
 TEST_P(EveryIntegrator, PinnedNodesNeverMove) {
   lab::Trial trial = SoftFlag(GetParam());
   const ClothModel<double> model = BuildClothModel<double>(trial.params);
-  const ClothState<double> state = lab::RunFixed(trial, 400);
+  const ClothState<double> state = lab::RunFixed<double>(trial, 400);
   for (int i = 0; i < model.num_nodes(); ++i) {
     if (!model.pinned(i)) continue;
     EXPECT_EQ(state.x[i], model.rest_x[i]);
