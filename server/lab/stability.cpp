@@ -27,10 +27,10 @@ double LargestStableStep(const Trial& trial, double low, double high, double pre
   return low;
 }
 
-// K at rest: each spring adds k u u^T to its nodes' diagonal blocks and -k u u^T off the
-// diagonal (u its unit direction); the mass-weighted form M^-1/2 K M^-1/2 is symmetric with the
-// eigenvalues of M^-1 K.
-double HighestFrequency(const sim::SimParams& params) {
+// K (or C) at rest: each spring adds s u u^T to its nodes' diagonal blocks and -s u u^T off the
+// diagonal (u its unit direction, s its stiffness or damping); the mass-weighted form
+// M^-1/2 K M^-1/2 is symmetric with the eigenvalues of M^-1 K.
+double TopEigenvalue(const sim::SimParams& params, bool of_damping) {
   const sim::ClothModel<double> model = sim::BuildClothModel<double>(params);
   std::vector<int> slot(model.num_nodes(), -1);  // free node => its block in the matrix
   int free_nodes = 0;
@@ -50,7 +50,7 @@ double HighestFrequency(const sim::SimParams& params) {
             Eigen::Vector3d(model.rest_x[b] - model.rest_x[a], model.rest_y[b] - model.rest_y[a],
                             model.rest_z[b] - model.rest_z[a])
                 .normalized();
-        const Eigen::Matrix3d block = family.stiffness * u * u.transpose();
+        const Eigen::Matrix3d block = (of_damping ? family.damping : family.stiffness) * u * u.transpose();
         add(a, a, block);
         add(b, b, block);
         add(a, b, -block);
@@ -64,7 +64,7 @@ double HighestFrequency(const sim::SimParams& params) {
   }
   const Eigen::MatrixXd weighted = scale.asDiagonal() * k * scale.asDiagonal();
   const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(weighted).eigenvalues();
-  return std::sqrt(std::max(eigenvalues.maxCoeff(), 0.0));
+  return std::max(eigenvalues.maxCoeff(), 0.0);
 }
 
 }  // namespace flagsim::lab

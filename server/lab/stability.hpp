@@ -2,6 +2,8 @@
 // grid's highest natural frequency.
 #pragma once
 
+#include <cmath>
+
 #include "sim/sim_params.hpp"
 #include "trajectory.hpp"
 
@@ -12,8 +14,14 @@ namespace flagsim::lab {
 /// `high` if that is stable, `low` if even that is not.
 double LargestStableStep(const Trial& trial, double low, double high, double precision = 0.02);
 
-/// rad/s: the highest natural frequency sqrt(max eig M^-1 K) of the flag at rest, pinned nodes
-/// held, from a dense symmetric eigensolve (for small grids: O(n^3) in the free coordinates).
-double HighestFrequency(const sim::SimParams& params);
+/// The largest eigenvalue of M^-1 K ((rad/s)^2), or of M^-1 C with `of_damping` (1/s), for the
+/// flag at rest with its pinned nodes held, from a dense symmetric eigensolve (for small grids:
+/// O(n^3) in the free coordinates).
+double TopEigenvalue(const sim::SimParams& params, bool of_damping);
+
+/// rad/s: the highest natural frequency, sqrt of TopEigenvalue of M^-1 K.
+inline double HighestFrequency(const sim::SimParams& params) {
+  return std::sqrt(TopEigenvalue(params, false));
+}
 
 }  // namespace flagsim::lab

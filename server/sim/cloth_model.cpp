@@ -20,11 +20,15 @@ double AreaShare(int r, int c, int rows, int cols) {
   return along * down;
 }
 
-/// (M^-1/2 K M^-1/2) v over the free nodes, K the stiffness of the springs at rest: each spring
-/// adds k u u^T (v_a - v_b) to node a and the opposite to node b (u its rest direction).
+/// Which spring constant a matrix is built from: K from the stiffnesses, C from the dampings.
+enum class SpringMatrix { kStiffness, kDamping };
+
+/// (M^-1/2 S M^-1/2) v over the free nodes, S = K or C of the springs at rest: each spring adds
+/// s u u^T (v_a - v_b) to node a and the opposite to node b (u its rest direction, s its
+/// constant).
 template <typename Real>
-void ApplyRestStiffness(const ClothModel<Real>& model, const std::vector<double>& scale,
-                        const std::vector<Eigen3>& v, std::vector<Eigen3>* out) {
+void ApplyRestMatrix(const ClothModel<Real>& model, SpringMatrix matrix, const std::vector<double>& scale,
+                     const std::vector<Eigen3>& v, std::vector<Eigen3>* out) {
   std::fill(out->begin(), out->end(), Eigen3{0, 0, 0});
   for (const SpringFamily<Real>& family : model.families) {
     for (int r = 0; r + family.dr < model.rows; ++r) {
@@ -39,7 +43,8 @@ void ApplyRestStiffness(const ClothModel<Real>& model, const std::vector<double>
         along += ux * (scale[a] * v[a][0] - scale[b] * v[b][0]);
         along += uy * (scale[a] * v[a][1] - scale[b] * v[b][1]);
         along += uz * (scale[a] * v[a][2] - scale[b] * v[b][2]);
-        const double f = double(family.stiffness) * along / (length * length);
+        const double constant = matrix == SpringMatrix::kStiffness ? family.stiffness : family.damping;
+        const double f = constant * along / (length * length);
         const double u[3] = {ux, uy, uz};
         for (int k = 0; k < 3; ++k) {
           (*out)[a][k] += scale[a] * f * u[k];
@@ -50,11 +55,11 @@ void ApplyRestStiffness(const ClothModel<Real>& model, const std::vector<double>
   }
 }
 
-/// The largest eigenvalue of M^-1 K at rest, estimated from below by power iteration. The
-/// start is a checkerboard in the plane of the flag, close to the stiffest mode of a grid, so
-/// few iterations get near it; the Rayleigh quotient never exceeds the true value.
+/// The largest eigenvalue of M^-1 K (or M^-1 C) at rest, estimated from below by power
+/// iteration. The start is a checkerboard in the plane of the flag, close to the stiffest mode
+/// of a grid, so few iterations get near it; the Rayleigh quotient never exceeds the true value.
 template <typename Real>
-double PowerIterationOmegaSquared(const ClothModel<Real>& model) {
+double PowerIterationEigenvalue(const ClothModel<Real>& model, SpringMatrix matrix) {
   constexpr int kIterations = 48;
   const int n = model.num_nodes();
   std::vector<double> scale(n);  // M^-1/2, 0 for pinned nodes
@@ -67,7 +72,7 @@ double PowerIterationOmegaSquared(const ClothModel<Real>& model) {
   }
   double estimate = 0;
   for (int iteration = 0; iteration < kIterations; ++iteration) {
-    ApplyRestStiffness(model, scale, v, &w);
+    ApplyRestMatrix(model, matrix, scale, v, &w);
     double vv = 0, vw = 0, ww = 0;
     for (int i = 0; i < n; ++i) {
       for (int k = 0; k < 3; ++k) {
@@ -172,9 +177,12 @@ FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double fric
     bound.omega_squared = std::max(bound.omega_squared, 2 * stiffness_sum[i] * inverse_mass);
     bound.damping_rate = std::max(bound.damping_rate, 2 * damping_sum[i] * inverse_mass + friction);
   }
-  // Gershgorin's bound is safe but loose (by about 2x on these grids); the power iteration's
-  // estimate, with a margin for what it has not yet converged to, is tighter.
-  bound.omega_squared = std::min(bound.omega_squared, kPowerMargin * PowerIterationOmegaSquared(model));
+  // Gershgorin's bounds are safe but loose (by about 2x on these grids); the power iteration's
+  // estimates, with a margin for what they have not yet converged to, are tighter.
+  bound.omega_squared =
+      std::min(bound.omega_squared, kPowerMargin * PowerIterationEigenvalue(model, SpringMatrix::kStiffness));
+  bound.damping_rate = std::min(
+      bound.damping_rate, kPowerMargin * PowerIterationEigenvalue(model, SpringMatrix::kDamping) + friction);
   return bound;
 }
 

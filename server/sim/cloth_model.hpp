@@ -69,8 +69,8 @@ void SetSpringConstants(const SimParams& params, ClothModel<Real>* model);
 /// Bounds on the grid's highest angular frequencies, for choosing stable explicit steps.
 /// Stiffness: Gershgorin's theorem on M^-1 K (max over nodes of sum_j 2 k_ij / m_i) is safe but
 /// about twice the true value on these grids, so it is tightened to 1.25 times a power-iteration
-/// estimate of the top eigenvalue at rest when that is lower. Damping: Gershgorin on M^-1 C,
-/// max of sum_j 2 c_ij / m_i + friction.
+/// estimate of the top eigenvalue at rest when that is lower. Damping: the same for M^-1 C, plus
+/// friction.
 struct FrequencyBound {
   double omega_squared = 0;  ///< (rad/s)^2, >= the largest eigenvalue of M^-1 K
   double damping_rate = 0;   ///< 1/s, >= the largest eigenvalue of M^-1 C
