@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <sys/resource.h>
+
 #include <csignal>
 #include <iostream>
 
@@ -91,8 +93,10 @@ int main(int argc, char** argv) {
                  channels.prefix);
     server.Run(g_stop);
     const auto& state = server.session().simulation().state();
-    spdlog::info("flagd: stopped at step {}, t = {:.3f} s, state hash {:016x}", state.step, state.time,
-                 server.session().simulation().Hash());
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    spdlog::info("flagd: stopped at step {}, t = {:.3f} s, state hash {:016x}, peak memory {:.1f} MB", state.step,
+                 state.time, server.session().simulation().Hash(), usage.ru_maxrss / 1024.0);
   } catch (const std::exception& error) {
     std::cerr << "flagd: " << error.what() << "\n";
     return 1;

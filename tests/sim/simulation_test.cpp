@@ -129,5 +129,31 @@ TEST(Simulation, AFlagInWindNeverSleeps) {
   }
 }
 
+// Switching integrators on a moving flag keeps its state, and the next step moves it no more
+// than the steps before did: no visible jump.
+TEST(Simulation, SwitchingIntegratorsLiveMakesNoJump) {
+  const auto largest_move = [](const ClothState<float>& a, const ClothState<float>& b) {
+    float largest = 0;
+    for (int i = 0; i < a.num_nodes(); ++i) {
+      largest = std::max({largest, std::abs(a.x[i] - b.x[i]), std::abs(a.y[i] - b.y[i]), std::abs(a.z[i] - b.z[i])});
+    }
+    return largest;
+  };
+  for (size_t kind = 0; kind < IntegratorNames().size(); ++kind) {
+    SimParams params;
+    Simulation<float> simulation(params, WindSettings{{8.0, 0.0, 2.0}, 0.2, 0.0});
+    for (int i = 0; i < 300; ++i) simulation.Step();
+    ClothState<float> before = simulation.state();
+    simulation.Step();
+    const float usual = largest_move(before, simulation.state());
+    params.integrator = static_cast<IntegratorKind>(kind);
+    before = simulation.state();
+    simulation.SetParams(params);
+    EXPECT_EQ(simulation.Hash(), StateHash(before)) << IntegratorNames()[kind];
+    simulation.Step();
+    EXPECT_LT(largest_move(before, simulation.state()), 2 * usual) << IntegratorNames()[kind];
+  }
+}
+
 }  // namespace
 }  // namespace flagsim::sim
