@@ -187,7 +187,8 @@ void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimPar
 template <typename Real>
 void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimParams& params,
                                     const WindField& wind, const ClothState<Real>& state, double t,
-                                    NodeForces<Real>* forces, ForceTerms terms) {
+                                    NodeForces<Real>* forces, ForceTerms terms,
+                                    const std::function<void(int)>& after_row) {
   Resize(model);
   SampleWind(model, wind, t);
   forces->x.resize(model.num_nodes());
@@ -203,7 +204,10 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
       if (r + 1 < rows) WindRow(model, params, state, r);
     }
 #pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) GatherRow(model, params, state, r, terms, forces);
+    for (int r = 0; r < rows; ++r) {
+      GatherRow(model, params, state, r, terms, forces);
+      if (after_row) after_row(r);
+    }
   }
 }
 

@@ -8,6 +8,7 @@
 // for bit whatever the number of threads.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "cloth_model.hpp"
@@ -31,9 +32,12 @@ template <typename Real>
 class ForceEvaluator {
  public:
   /// (state.x, state.v, t) => forces. Pinned nodes get forces too; integrators ignore them.
+  /// `after_row(r)`, if given, runs as soon as row r's forces are summed, on the same thread,
+  /// while they are still in cache: an update of row r's own nodes may go there (nothing reads
+  /// a node's position or velocity once its row's springs and faces are done).
   void Evaluate(const ClothModel<Real>& model, const SimParams& params, const WindField& wind,
                 const ClothState<Real>& state, double t, NodeForces<Real>* forces,
-                ForceTerms terms = ForceTerms::kAll);
+                ForceTerms terms = ForceTerms::kAll, const std::function<void(int)>& after_row = {});
 
  private:
   void Resize(const ClothModel<Real>& model);
