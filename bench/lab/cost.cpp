@@ -3,11 +3,11 @@
 // seconds of the stepping thread over enough steps to fill a quarter second. Memory: bytes the
 // allocator holds once the simulation is built and has stepped, per node.
 #include <malloc.h>
-#include <time.h>
 
 #include <algorithm>
 
 #include "experiments.hpp"
+#include "lab/cpu_time.hpp"
 #include "lab_setup.hpp"
 #include "scene_file.hpp"
 #include "sim/simulation.hpp"
@@ -15,12 +15,6 @@
 
 namespace flagsim::lab {
 namespace {
-
-double ThreadCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
-}
 
 /// Bytes in use from the allocator (small blocks and mapped ones).
 double BytesInUse() {

@@ -1,23 +1,16 @@
 #include "trajectory.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "cpu_time.hpp"
 #include "sim/cloth_model.hpp"
 #include "sim/forces.hpp"
 #include "sim/integrator.hpp"
 
 namespace flagsim::lab {
 namespace {
-
-double ThreadCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
-}
 
 constexpr int kSoundnessInterval = 64;  ///< substeps between checks for a blow-up
 

@@ -47,7 +47,8 @@ TEST_P(OrderTest, ErrorFallsAtTheMethodsOrder) {
   const double reference_error =
       lab::RmsDistance(reference, lab::RunFixed<double>(reference_trial, 4 * kCoarse * 32));
   double errors[3];
-  for (int k = 0; k < 3; ++k) errors[k] = lab::RmsDistance(lab::RunFixed<double>(trial, kCoarse << k), reference);
+  for (int k = 0; k < 3; ++k)
+    errors[k] = lab::RmsDistance(lab::RunFixed<double>(trial, kCoarse << k), reference);
   EXPECT_LT(reference_error, 1e-3 * errors[2]);
   const double slope = std::log2(errors[1] / errors[2]);
   EXPECT_NEAR(slope, GetParam().order, 0.25)

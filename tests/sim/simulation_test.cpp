@@ -135,7 +135,8 @@ TEST(Simulation, SwitchingIntegratorsLiveMakesNoJump) {
   const auto largest_move = [](const ClothState<float>& a, const ClothState<float>& b) {
     float largest = 0;
     for (int i = 0; i < a.num_nodes(); ++i) {
-      largest = std::max({largest, std::abs(a.x[i] - b.x[i]), std::abs(a.y[i] - b.y[i]), std::abs(a.z[i] - b.z[i])});
+      largest = std::max(
+          {largest, std::abs(a.x[i] - b.x[i]), std::abs(a.y[i] - b.y[i]), std::abs(a.z[i] - b.z[i])});
     }
     return largest;
   };
