@@ -156,5 +156,59 @@ TEST(Simulation, SwitchingIntegratorsLiveMakesNoJump) {
   }
 }
 
+// Each explicit integrator held to one substep on a stiff flag blows up; the guard rolls back,
+// multiplies the substeps, and past kMaxGuardFactor hands the flag to XPBD. The flag stays sound
+// at every step, and the event says what happened.
+TEST(Simulation, TheGuardRecoversEveryExplicitIntegratorFromItsUnstableRegion) {
+  for (const IntegratorKind kind :
+       {IntegratorKind::kSymplecticEuler, IntegratorKind::kSeed, IntegratorKind::kExplicitEuler,
+        IntegratorKind::kVelocityVerlet, IntegratorKind::kRk4}) {
+    SimParams params;
+    params.stiffness = 1e5;
+    params.substeps = 1;
+    params.integrator = kind;
+    Simulation<float> simulation(params, WindSettings{{12.0, 0.0, 3.0}, 0.3, 0.0});
+    for (int i = 0; i < 200; ++i) {
+      simulation.Step();
+      const auto& state = simulation.state();
+      for (int n = 0; n < state.num_nodes(); ++n) {
+        ASSERT_TRUE(std::isfinite(state.x[n]) && std::isfinite(state.vx[n])) << IntegratorName(kind);
+        ASSERT_LT(std::abs(state.vx[n]), Simulation<float>::kRunawaySpeed) << IntegratorName(kind);
+      }
+    }
+    EXPECT_GT(simulation.recoveries(), 0) << IntegratorName(kind);
+    const GuardEvent& event = simulation.last_guard_event();
+    EXPECT_NE(event.problem.find("with " + IntegratorName(kind)), std::string::npos) << event.Describe();
+    EXPECT_EQ(simulation.params().integrator, IntegratorKind::kXpbd) << event.Describe();
+  }
+}
+
+// The unconditionally stable integrators at the largest step allowed on a stiff flag in a gale:
+// xpbd (10 iterations) and the linearised implicit Euler overshoot until springs stretch many
+// times their length. The guard keeps every step sound with more substeps; they keep their
+// integrator.
+TEST(Simulation, TheGuardKeepsStableIntegratorsSoundAtTheLargestStep) {
+  for (const IntegratorKind kind :
+       {IntegratorKind::kXpbd, IntegratorKind::kImplicitEuler, IntegratorKind::kProjectiveDynamics}) {
+    SimParams params;
+    params.stiffness = 1e5;
+    params.dt = 0.05;
+    params.integrator = kind;
+    Simulation<float> simulation(params, WindSettings{{40.0, 0.0, 10.0}, 1.0, 0.0});
+    for (int i = 0; i < 100; ++i) {
+      simulation.Step();
+      const auto& state = simulation.state();
+      for (int n = 0; n < state.num_nodes(); ++n) {
+        ASSERT_TRUE(std::isfinite(state.x[n]) && std::isfinite(state.vx[n])) << IntegratorName(kind);
+      }
+    }
+    EXPECT_EQ(simulation.params().integrator, kind);
+    if (simulation.recoveries() > 0) {
+      EXPECT_NE(simulation.last_guard_event().Describe().find("with " + IntegratorName(kind)),
+                std::string::npos);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace flagsim::sim
