@@ -1,0 +1,77 @@
+#include "control_laws.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace flagsim::sim {
+namespace {
+
+using Vec = std::array<double, 3>;
+
+double Dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+Vec Cross(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+Vec Normalized(const Vec& v) {
+  const double length = std::sqrt(Dot(v, v));
+  return {v[0] / length, v[1] / length, v[2] / length};
+}
+
+/// Rate at key (t, v) of the Catmull-Rom spline through its neighbours (ta, va) and (tb, vb).
+double CatmullRomRate(double ta, double va, double tb, double vb) {
+  return tb > ta ? (vb - va) / (tb - ta) : 0.0;
+}
+
+}  // namespace
+
+const std::vector<std::string>& ControlLawNames() {
+  static const std::vector<std::string> names = {"step", "linear", "smooth", "cubic"};
+  return names;
+}
+
+double Interpolate(ControlLaw law, const Segment& g, double t) {
+  const double span = g.t1 - g.t0;
+  const double s = span > 0 ? std::clamp((t - g.t0) / span, 0.0, 1.0) : 1.0;
+  switch (law) {
+    case ControlLaw::kStep:
+      return s < 1 ? g.v0 : g.v1;
+    case ControlLaw::kLinear:
+      return g.v0 + (g.v1 - g.v0) * s;
+    case ControlLaw::kSmooth:
+      return g.v0 + (g.v1 - g.v0) * s * s * (3 - 2 * s);
+    case ControlLaw::kCubic: {
+      // Hermite basis on [0, 1] with the rates scaled to the segment's length.
+      const double m0 = span * CatmullRomRate(g.t_before, g.v_before, g.t1, g.v1);
+      const double m1 = span * CatmullRomRate(g.t0, g.v0, g.t_after, g.v_after);
+      const double s2 = s * s, s3 = s2 * s;
+      return (2 * s3 - 3 * s2 + 1) * g.v0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * g.v1 +
+             (s3 - s2) * m1;
+    }
+  }
+  return g.v1;
+}
+
+Vec Slerp(const Vec& from, const Vec& to, double s) {
+  const double cosine = std::clamp(Dot(from, to), -1.0, 1.0);
+  const double angle = std::acos(cosine);
+  if (angle < 1e-9) return to;
+  // The axis to turn about, perpendicular to `from`: from x to; for opposite directions, the
+  // vertical made perpendicular to `from` (x instead if `from` is vertical).
+  Vec axis = Cross(from, to);
+  if (Dot(axis, axis) < 1e-18) {
+    const Vec up = std::abs(from[1]) < 0.9 ? Vec{0, 1, 0} : Vec{1, 0, 0};
+    const double along = Dot(up, from);
+    axis = {up[0] - along * from[0], up[1] - along * from[1], up[2] - along * from[2]};
+  }
+  axis = Normalized(axis);
+  // Rodrigues for a vector perpendicular to the axis: from cos(theta) + (axis x from) sin(theta).
+  const Vec across = Cross(axis, from);
+  const double theta = s * angle;
+  Vec turned;
+  for (int k = 0; k < 3; ++k) turned[k] = from[k] * std::cos(theta) + across[k] * std::sin(theta);
+  return Normalized(turned);
+}
+
+}  // namespace flagsim::sim
