@@ -6,7 +6,7 @@
 // --csv FILE        also write the table as CSV: grid,nodes,engine,method,substeps,ms_per_step,
 //                   bullet_over_this,stable_step_ms,stable_bound (=, >= or <)
 // --repetitions N   timed repetitions per method, their median reported (default 7)
-// --horizon S       simulated seconds a step size must survive to count as stable (default 1)
+// --horizon S       simulated seconds a step size must survive to count as stable (default 2)
 // --iterations N    Bullet's position solver iterations, m_cfg.piterations (default 10)
 //
 // The flag, in both engines: the breeze scene (LoadScene("breeze")) at cols x rows nodes, 1.5 m x
@@ -81,7 +81,7 @@ constexpr double kStepPrecision = 1.05;  ///< the search stops when hi / lo is a
 
 struct Options {
   int repetitions = 7;
-  double horizon = 1.0;  ///< s
+  double horizon = 2.0;  ///< s
   int iterations = 10;   ///< Bullet's piterations
   std::string csv_path;  ///< "" writes no CSV
 };
