@@ -21,10 +21,12 @@
 //              diagonals, or knight's moves once diagonals exist, and builds an n^2 adjacency
 //              matrix: 600 MB at 128 x 96).
 //   stiffness  kLST from each family's spring constant k, see LinkStiffness: not an exact match.
-//              Bullet's links have no damping; flagsim's spring damping (0.05 N s/m) is left out.
+//              Bullet's links have no damping: flagsim's spring damping is left out.
 //   air        kDP = 1 - exp(-friction h), flagsim's air friction over one step.
-//   wind       aeromodel F_TwoSided: per face rho kLF 2A (n.u) |u|^2 n, u = w - v, a third to each
-//              node. kLF = C / (2 rho |w|^2) makes it flagsim's C A (n.w) n when |u| = |w|;
+//   wind       aeromodel F_TwoSided: per face rho kLF 2A0 (n.u) |u|^2 n, A0 its rest area,
+//              u = w - v, a third to each node (a share that would change a node's velocity by
+//              more than its speed in one step is cut to one that stops it along the share).
+//              kLF = C / (2 rho |w|^2) makes it flagsim's C A (n.w) n when |u| = |w| and A = A0;
 //              kDG = 0, as flagsim's law has no drag along the wind.
 //   solver     m_cfg.piterations = --iterations, btSoftRigidDynamicsWorld::stepSimulation(h, 0):
 //              exactly one internal step of h.
