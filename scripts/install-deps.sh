@@ -3,7 +3,8 @@
 # Idempotent and non-interactive: installs only what is missing.
 #   scripts/install-deps.sh          build, test and run
 #   scripts/install-deps.sh --java   also a JDK, for the lcm-spy types jar
-#   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL (the llvmpipe comparison) and gnuplot (charts)
+#   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL (the llvmpipe comparison), Bullet (the soft body
+#                                    comparison) and gnuplot (charts)
 set -euo pipefail
 
 packages=(
@@ -21,7 +22,7 @@ packages=(
 for option in "$@"; do
   case $option in
     --java) packages+=(default-jdk-headless) ;;
-    --bench) packages+=(libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox) ;;
+    --bench) packages+=(libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox libbullet-dev) ;;
     *) echo "install-deps: unknown option $option (known: --java, --bench)" >&2; exit 2 ;;
   esac
 done
