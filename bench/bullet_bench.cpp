@@ -76,7 +76,7 @@ constexpr double kStep = 0.002;          ///< s, the step timed
 constexpr double kWarmup = 0.1;          ///< s of simulated time before timing
 constexpr double kRepetitionCpu = 0.05;  ///< s of CPU time per timed repetition, about
 constexpr double kAirDensity = 1.2;      ///< kg/m^3, Bullet's rho
-constexpr double kRunawaySpeed = 100.0;  ///< m/s: a node faster than this is a blow-up
+constexpr double kRunawaySpeed = lab::kRunawaySpeed;  ///< m/s: a node faster than this is a blow-up
 constexpr double kSmallestStep = 1e-6;   ///< s, the stability search's range
 constexpr double kLargestStep = 0.05;    ///< s
 constexpr double kStepPrecision = 1.05;  ///< the search stops when hi / lo is at most this
@@ -299,7 +299,7 @@ bool FlagsimStable(const Scene& scene, sim::IntegratorKind method, double horizo
   trial.params.integrator = method;
   trial.params.substeps = 1;
   trial.params.dt = h;
-  return lab::StateIsSound(lab::RunFixed(trial, StepsFor(horizon, h)), kRunawaySpeed);
+  return lab::StateIsSound(lab::RunFixed<double>(trial, StepsFor(horizon, h)));
 }
 
 /// Whether Bullet's flag survives `horizon` seconds in steps of h.
