@@ -1,7 +1,7 @@
 // Convergence orders. A 16 x 12 breeze flag in steady wind for 0.05 s (short enough that the
 // motion is smooth and not yet chaotic), each integrator at five steps halving from its
 // stability limit (explicit) or 1/60 s, errors against converged RK4; the order is the
-// log-log slope between the two finest steps whose errors stay 100 times above the
+// log-log slope between the two finest steps whose errors stay 10 times above the
 // reference's own. The seed's scheme is left out: its friction
 // law (-mu F) makes it a different ODE from the reference's.
 #include <cmath>
@@ -50,9 +50,9 @@ void Orders(const std::string& csv) {
       errors.push_back(RmsDistance(RunFixed<double>(trial, SubstepsFor(trial, h)), reference));
       row.push_back(Table::Number(errors.back()));
     }
-    // The finest pair still far above the reference's own error.
+    // The finest pair still well above the reference's own error.
     size_t fine = errors.size() - 1;
-    while (fine > 1 && errors[fine] < 100 * converged.self_error) --fine;
+    while (fine > 1 && errors[fine] < 10 * converged.self_error) --fine;
     row.push_back(Table::Number(std::log2(errors[fine - 1] / errors[fine])));
     row.push_back(Theory(kind));
     table.Add(row);
