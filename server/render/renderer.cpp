@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 namespace flagsim::render {
 namespace {
@@ -89,8 +88,10 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
     PrimitiveStage(scene, options.mode, camera.width, camera.height, options.threads);
   }
   BinStage(camera.width, camera.height, options.tile_size);
+  pattern_.Assign(scene.pattern);
   ShadeContext context;
   context.scene = &scene;
+  context.pattern = &pattern_;
   context.mode = options.mode;
   context.eye = eye_;
   TileStage(context, options, framebuffer);
@@ -242,33 +243,19 @@ void Renderer::TileStage(const ShadeContext& context, const RenderOptions& optio
   const int tiles = tiles_x_ * tiles_y_, size = options.tile_size;
 #pragma omp parallel num_threads(options.threads) if (options.threads > 1)
   {
-    std::vector<uint8_t> rgb(size_t(size) * size * 3);
-    std::vector<float> depth(size_t(size) * size);
+    TileBuffer buffer(size);
 #pragma omp for schedule(dynamic)
     for (int index = 0; index < tiles; ++index) {
-      TileTarget target;
-      target.rect.x0 = (index % tiles_x_) * size;
-      target.rect.y0 = (index / tiles_x_) * size;
-      target.rect.x1 = std::min(target.rect.x0 + size, framebuffer->width);
-      target.rect.y1 = std::min(target.rect.y0 + size, framebuffer->height);
-      target.image_height = framebuffer->height;
-      target.rgb = rgb.data();
-      target.rgb_stride = size_t(size) * 3;
-      target.depth = depth.data();
-      target.depth_stride = size_t(size);
+      TileRect rect;
+      rect.x0 = (index % tiles_x_) * size;
+      rect.y0 = (index / tiles_x_) * size;
+      rect.x1 = std::min(rect.x0 + size, framebuffer->width);
+      rect.y1 = std::min(rect.y0 + size, framebuffer->height);
+      const TileTarget target = buffer.Target(rect, framebuffer->height);
       ClearTile(*context.scene, target);
       for (const uint32_t i : triangle_bins_[index]) RasterizeTriangle(setups_[i], context, target);
       for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
-      // Out to the image: colour rows, and depth if asked for.
-      const int width = target.rect.x1 - target.rect.x0;
-      for (int y = target.rect.y0; y < target.rect.y1; ++y) {
-        std::memcpy(framebuffer->Pixel(target.rect.x0, y), target.Pixel(target.rect.x0, y),
-                    size_t(width) * 3);
-        if (options.keep_depth) {
-          std::memcpy(&framebuffer->depth[size_t(y) * framebuffer->width + target.rect.x0],
-                      target.Depth(target.rect.x0, y), size_t(width) * sizeof(float));
-        }
-      }
+      CopyOut(target, options.keep_depth, framebuffer);
     }
   }
 }

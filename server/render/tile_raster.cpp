@@ -7,8 +7,8 @@ namespace flagsim::render {
 namespace {
 
 /// 0..1 => 0..255, rounded and clamped; branch-free so that the loops using it vectorise.
-uint8_t ToByte(float value) {
-  return static_cast<uint8_t>(std::min(std::max(value * 255.0f + 0.5f, 0.0f), 255.0f));
+uint32_t ToByte(float value) {
+  return static_cast<uint32_t>(static_cast<int32_t>(std::min(std::max(value * 255.0f + 0.5f, 0.0f), 255.0f)));
 }
 
 /// A plane's value along one row: at + step * (x - min_x).
@@ -20,109 +20,110 @@ RowPlane AlongRow(const Plane& plane, float fy) { return RowPlane{plane.origin +
 
 /// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
 /// base the material's colour, times the pattern's texel at (u, v) (channels 6, 7) when
-/// `kPatterned`. Perspective-correct: each channel is (channel / w) / (1 / w).
+/// `kPatterned`. Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block
+/// of kSpanLanes pixels at once, each step a loop over the lanes so that it vectorises.
 template <bool kPatterned>
-struct SpanShader {
+class BlockShader {
+ public:
   static constexpr int kChannels = kPatterned ? 8 : 6;
 
-  SpanShader(const TriangleSetup& t, const Material& material, const Texture& texture, float fy)
-      : inverse_w(AlongRow(t.inverse_w, fy)),
-        base{material.colour[0], material.colour[1], material.colour[2]},
-        pattern(texture) {
-    for (int k = 0; k < kChannels; ++k) channel[k] = AlongRow(t.channels[k], fy);
+  BlockShader(const TriangleSetup& t, const Material& material, const RgbxTexture& pattern, float fy)
+      : inverse_w_(AlongRow(t.inverse_w, fy)),
+        base_{material.colour[0], material.colour[1], material.colour[2]},
+        pattern_(pattern) {
+    for (int k = 0; k < kChannels; ++k) channel_[k] = AlongRow(t.channels[k], fy);
   }
 
-  /// The colour at fx pixels from the box's first column, 0..1 (more under strong light).
-  void At(float fx, float* r, float* g, float* b) const {
-    const float w = 1.0f / (inverse_w.at + inverse_w.step * fx);
-    float c[kChannels];
-    for (int k = 0; k < kChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
-    float red = base[0], green = base[1], blue = base[2];
-    if constexpr (kPatterned) {
-      const uint8_t* texel = pattern.Sample(c[6], c[7]);
-      red *= texel[0] * (1.0f / 255);
-      green *= texel[1] * (1.0f / 255);
-      blue *= texel[2] * (1.0f / 255);
+  /// The RGBX colours at fx[i] pixels from the box's first column.
+  void Shade(const float fx[kSpanLanes], uint32_t rgbx[kSpanLanes]) const {
+    float w[kSpanLanes], c[kChannels][kSpanLanes];
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) w[i] = 1.0f / (inverse_w_.at + inverse_w_.step * fx[i]);
+    for (int k = 0; k < kChannels; ++k) {
+#pragma omp simd
+      for (int i = 0; i < kSpanLanes; ++i) c[k][i] = (channel_[k].at + channel_[k].step * fx[i]) * w[i];
     }
-    *r = red * c[0] + c[3];
-    *g = green * c[1] + c[4];
-    *b = blue * c[2] + c[5];
+    float base[3][kSpanLanes];
+    if constexpr (kPatterned) {
+      Tint(c[6], c[7], base);
+    } else {
+#pragma omp simd
+      for (int i = 0; i < kSpanLanes; ++i) {
+        for (int j = 0; j < 3; ++j) base[j][i] = base_[j];
+      }
+    }
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) {
+      rgbx[i] = PackRgbx(ToByte(base[0][i] * c[0][i] + c[3][i]), ToByte(base[1][i] * c[1][i] + c[4][i]),
+                         ToByte(base[2][i] * c[2][i] + c[5][i]));
+    }
   }
 
-  RowPlane inverse_w;
-  RowPlane channel[kChannels];
-  float base[3];
-  const Texture& pattern;
+ private:
+  /// base * (texel / 255) per channel, the texel at (u[i], v[i]) picked as Texture::Sample does.
+  void Tint(const float u[kSpanLanes], const float v[kSpanLanes], float base[3][kSpanLanes]) const {
+    const int width = pattern_.width, height = pattern_.height;
+    int32_t index[kSpanLanes];
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) {
+      int x = static_cast<int>(u[i] * width), y = static_cast<int>(v[i] * height);
+      x = x < 0 ? 0 : x >= width ? width - 1 : x;
+      y = y < 0 ? 0 : y >= height ? height - 1 : y;
+      index[i] = y * width + x;
+    }
+    const uint32_t* texels = pattern_.texels.data();
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) {
+      const uint32_t texel = texels[index[i]];
+      for (int j = 0; j < 3; ++j) base[j][i] = base_[j] * (float(texel >> 8 * j & 0xff) * (1.0f / 255));
+    }
+  }
+
+  RowPlane inverse_w_;
+  RowPlane channel_[kChannels];
+  float base_[3];
+  const RgbxTexture& pattern_;
 };
 
-/// Short spans (the flag's small triangles) and patterned ones (whose texel fetch does not
-/// vectorise): one pass, shading only the pixels in front. depth and rgb point at pixel `first`.
+/// The n pixels of a row from fx0 pixels past the box's first column, kSpanLanes at a time:
+/// the depth test, then where any pixel of the block is in front, the block's colours stored
+/// to those pixels. Lanes past the span repeat its last pixel and are masked off. depth and
+/// rgbx point at the span's first pixel.
 template <bool kPatterned>
-void FillSpanOnePass(const SpanShader<kPatterned>& shader, const RowPlane& z, float fx0, int n, float* depth,
-                     uint8_t* rgb) {
-  for (int i = 0; i < n; ++i, rgb += 3) {
-    const float fx = fx0 + float(i);
-    const float here = z.at + z.step * fx;
-    if (!(here < depth[i])) continue;
-    depth[i] = here;
-    float r, g, b;
-    shader.At(fx, &r, &g, &b);
-    rgb[0] = ToByte(r);
-    rgb[1] = ToByte(g);
-    rgb[2] = ToByte(b);
-  }
-}
-
-/// Long plain spans (the ground, the pole): three passes, the first two free of branches so
-/// that they vectorise: the depth test (keeping a mask), the colours of every pixel, then the
-/// stores where the mask is set. depth and rgb point at pixel `first`.
-void FillSpanThreePasses(const SpanShader<false>& shader, const RowPlane& z, float fx0, int n,
-                         float* __restrict depth, uint8_t* __restrict rgb) {
-  constexpr int kMaxSpan = 4096;
-  alignas(32) uint8_t visible[kMaxSpan];
-  alignas(32) uint8_t red[kMaxSpan], green[kMaxSpan], blue[kMaxSpan];
-  int in_front = 0;
-  for (int i = 0; i < n; ++i) {
-    const float here = z.at + z.step * (fx0 + float(i));
-    const bool nearer = here < depth[i];
-    depth[i] = nearer ? here : depth[i];
-    visible[i] = nearer;
-    in_front += nearer;
-  }
-  if (in_front == 0) return;
-  for (int i = 0; i < n; ++i) {
-    float r, g, b;
-    shader.At(fx0 + float(i), &r, &g, &b);
-    red[i] = ToByte(r);
-    green[i] = ToByte(g);
-    blue[i] = ToByte(b);
-  }
-  for (int i = 0; i < n; ++i, rgb += 3) {
-    if (in_front < n && !visible[i]) continue;
-    rgb[0] = red[i];
-    rgb[1] = green[i];
-    rgb[2] = blue[i];
+void FillSpan(const BlockShader<kPatterned>& shader, const RowPlane& z, float fx0, int n, float* depth,
+              uint32_t* rgbx) {
+  for (int start = 0; start < n; start += kSpanLanes, depth += kSpanLanes, rgbx += kSpanLanes) {
+    float fx[kSpanLanes];
+    int32_t in_front[kSpanLanes];
+    int any = 0;
+#pragma omp simd reduction(| : any)
+    for (int i = 0; i < kSpanLanes; ++i) {
+      fx[i] = fx0 + float(std::min(start + i, n - 1));
+      const float here = z.at + z.step * fx[i];
+      const bool nearer = start + i < n && here < depth[i];
+      depth[i] = nearer ? here : depth[i];
+      in_front[i] = nearer;
+      any |= nearer;
+    }
+    if (!any) continue;
+    uint32_t colour[kSpanLanes];
+    shader.Shade(fx, colour);
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) rgbx[i] = in_front[i] ? colour[i] : rgbx[i];
   }
 }
 
 template <bool kPatterned>
-void FillSpanInterpolated(const TriangleSetup& t, const Material& material, const Texture& pattern, float fy,
-                          int first, int last, float* depth, uint8_t* rgb) {
-  constexpr int kLongSpan = 16;  ///< px: below this the passes' set-up costs more than they save
-  const SpanShader<kPatterned> shader(t, material, pattern, fy);
-  const RowPlane z = AlongRow(t.depth, fy);
-  const int n = last - first + 1;
-  const float fx0 = float(first - t.min_x);
-  if constexpr (!kPatterned) {
-    if (n >= kLongSpan) return FillSpanThreePasses(shader, z, fx0, n, depth, rgb);
-  }
-  FillSpanOnePass(shader, z, fx0, n, depth, rgb);
+void FillSpanInterpolated(const TriangleSetup& t, const Material& material, const RgbxTexture& pattern,
+                          float fy, int first, int last, float* depth, uint32_t* rgbx) {
+  const BlockShader<kPatterned> shader(t, material, pattern, fy);
+  FillSpan(shader, AlongRow(t.depth, fy), float(first - t.min_x), last - first + 1, depth, rgbx);
 }
 
 /// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel.
-/// depth and rgb point at pixel `first`.
+/// depth and rgbx point at pixel `first`.
 void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy, int first, int last,
-                   float* depth, uint8_t* rgb) {
+                   float* depth, uint32_t* rgbx) {
   const RenderScene& scene = *context.scene;
   const Material& material = scene.materials[t.material];
   const RowPlane z = AlongRow(t.depth, fy), inverse_w = AlongRow(t.inverse_w, fy);
@@ -147,14 +148,52 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy
       base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) * (1.0f / 255));
     }
     const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
-    uint8_t* pixel = rgb + 3 * (x - first);
-    pixel[0] = ToByte(colour[0]);
-    pixel[1] = ToByte(colour[1]);
-    pixel[2] = ToByte(colour[2]);
+    rgbx[x - first] = PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
   }
 }
 
 }  // namespace
+
+TileBuffer::TileBuffer(int size)
+    : stride_(size_t(size) + kSpanLanes - 1),
+      rgbx_(stride_ * size, PackRgbx(0, 0, 0)),
+      depth_(stride_ * size, 1.0f) {}
+
+TileTarget TileBuffer::Target(const TileRect& rect, int image_height) {
+  TileTarget target;
+  target.rect = rect;
+  target.image_height = image_height;
+  target.rgbx = rgbx_.data();
+  target.depth = depth_.data();
+  target.stride = stride_;
+  return target;
+}
+
+void RgbxTexture::Assign(const Texture& texture) {
+  width = texture.width;
+  height = texture.height;
+  texels.resize(size_t(width) * height);
+  for (size_t i = 0; i < texels.size(); ++i) {
+    texels[i] = PackRgbx(texture.rgb[3 * i], texture.rgb[3 * i + 1], texture.rgb[3 * i + 2]);
+  }
+}
+
+void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer) {
+  const TileRect& tile = target.rect;
+  const int pixels = tile.x1 - tile.x0;
+  for (int y = tile.y0; y < tile.y1; ++y) {
+    const uint8_t* __restrict rgbx = target.Pixel(tile.x0, y);
+    uint8_t* __restrict rgb = framebuffer->Pixel(tile.x0, y);
+#pragma omp simd
+    for (int i = 0; i < pixels; ++i) {
+      for (int k = 0; k < 3; ++k) rgb[3 * i + k] = rgbx[4 * i + k];
+    }
+    if (keep_depth) {
+      std::memcpy(&framebuffer->depth[size_t(y) * framebuffer->width + tile.x0], target.Depth(tile.x0, y),
+                  size_t(pixels) * sizeof(float));
+    }
+  }
+}
 
 void ClearTile(const RenderScene& scene, const TileTarget& target) {
   const TileRect& tile = target.rect;
@@ -162,14 +201,14 @@ void ClearTile(const RenderScene& scene, const TileTarget& target) {
   for (int y = tile.y0; y < tile.y1; ++y) {
     const float t = target.image_height > 1 ? float(y) / (target.image_height - 1) : 0.0f;
     const Eigen::Vector3f sky = scene.sky_top + t * (scene.sky_horizon - scene.sky_top);
-    // Four pixels are 12 bytes: copy that block along the row, then the last few pixels.
-    uint8_t block[12];
-    for (int k = 0; k < 12; ++k) block[k] = ToByte(sky[k % 3]);
-    uint8_t* row = target.Pixel(tile.x0, y);
-    int x = 0;
-    for (; x + 4 <= pixels; x += 4) std::memcpy(row + 3 * x, block, sizeof(block));
-    for (; x < pixels; ++x) std::memcpy(row + 3 * x, block, 3);
-    std::fill_n(target.Depth(tile.x0, y), pixels, 1.0f);
+    const uint32_t colour = PackRgbx(ToByte(sky[0]), ToByte(sky[1]), ToByte(sky[2]));
+    uint32_t* rgbx = target.Rgbx(tile.x0, y);
+    float* depth = target.Depth(tile.x0, y);
+#pragma omp simd
+    for (int i = 0; i < pixels; ++i) {
+      rgbx[i] = colour;
+      depth[i] = 1.0f;
+    }
   }
 }
 
@@ -187,13 +226,13 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
     if (first > last) continue;
     const float fy = float(y - t.min_y);
     float* depth = target.Depth(first, y);
-    uint8_t* rgb = target.Pixel(first, y);
+    uint32_t* rgbx = target.Rgbx(first, y);
     if (context.mode == ShadingMode::kPhong) {
-      FillSpanPhong(t, context, fy, first, last, depth, rgb);
+      FillSpanPhong(t, context, fy, first, last, depth, rgbx);
     } else if (material.patterned) {
-      FillSpanInterpolated<true>(t, material, context.scene->pattern, fy, first, last, depth, rgb);
+      FillSpanInterpolated<true>(t, material, *context.pattern, fy, first, last, depth, rgbx);
     } else {
-      FillSpanInterpolated<false>(t, material, context.scene->pattern, fy, first, last, depth, rgb);
+      FillSpanInterpolated<false>(t, material, *context.pattern, fy, first, last, depth, rgbx);
     }
   }
 }

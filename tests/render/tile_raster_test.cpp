@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tile_drawing.hpp"
+
 namespace flagsim::render {
 namespace {
 
@@ -33,7 +35,8 @@ TEST(TileRaster, GouraudColoursAreTheInterpolatedLight) {
   ASSERT_TRUE(SetupTriangle(At(0, 0, 0.5f, 0), At(32, 0, 0.5f, 1), At(0, 32, 0.5f, 0), 32, 32, &t));
   ShadeContext context;
   context.scene = &scene;
-  RasterizeTriangle(t, context, TileTarget::Into(&framebuffer, TileRect{0, 0, 32, 32}));
+  DrawInTile(&framebuffer, TileRect{0, 0, 32, 32},
+             [&](const TileTarget& tile) { RasterizeTriangle(t, context, tile); });
   for (const auto& [x, y] : {std::pair{0, 0}, std::pair{10, 3}, std::pair{20, 5}, std::pair{5, 20}}) {
     const int expected = int(255 * (x + 0.5f) / 32 + 0.5f);
     EXPECT_NEAR(framebuffer.Pixel(x, y)[0], expected, 1) << x << "," << y;
@@ -53,9 +56,10 @@ TEST(TileRaster, TheNearerTriangleWinsInEitherOrder) {
   for (const bool near_first : {true, false}) {
     Framebuffer framebuffer;
     framebuffer.Resize(16, 16);
-    const TileTarget tile = TileTarget::Into(&framebuffer, TileRect{0, 0, 16, 16});
-    RasterizeTriangle(near_first ? near_dark : far_light, context, tile);
-    RasterizeTriangle(near_first ? far_light : near_dark, context, tile);
+    DrawInTile(&framebuffer, TileRect{0, 0, 16, 16}, [&](const TileTarget& tile) {
+      RasterizeTriangle(near_first ? near_dark : far_light, context, tile);
+      RasterizeTriangle(near_first ? far_light : near_dark, context, tile);
+    });
     EXPECT_EQ(framebuffer.Pixel(3, 3)[0], 51) << near_first;  // 0.2 * 255
     EXPECT_FLOAT_EQ(framebuffer.depth[3 * 16 + 3], 0.3f);
   }
@@ -69,7 +73,8 @@ TEST(TileRaster, OnlyTheTileIsTouched) {
   ASSERT_TRUE(SetupTriangle(At(0, 0, 0.5f, 1), At(32, 0, 0.5f, 1), At(0, 32, 0.5f, 1), 32, 32, &t));
   Framebuffer framebuffer;
   framebuffer.Resize(32, 32);
-  RasterizeTriangle(t, context, TileTarget::Into(&framebuffer, TileRect{8, 0, 16, 8}));
+  DrawInTile(&framebuffer, TileRect{8, 0, 16, 8},
+             [&](const TileTarget& tile) { RasterizeTriangle(t, context, tile); });
   EXPECT_EQ(framebuffer.Pixel(10, 2)[0], 255);
   EXPECT_EQ(framebuffer.Pixel(2, 2)[0], 0);
   EXPECT_EQ(framebuffer.Pixel(10, 10)[0], 0);
@@ -82,7 +87,7 @@ TEST(TileRaster, ClearPaintsTheSkyGradientAndFarDepth) {
   Framebuffer framebuffer;
   framebuffer.Resize(4, 11);
   std::fill(framebuffer.depth.begin(), framebuffer.depth.end(), 0.0f);
-  ClearTile(scene, TileTarget::Into(&framebuffer, TileRect{0, 0, 4, 11}));
+  DrawInTile(&framebuffer, TileRect{0, 0, 4, 11}, [&](const TileTarget& tile) { ClearTile(scene, tile); });
   EXPECT_EQ(framebuffer.Pixel(2, 0)[2], 255);
   EXPECT_EQ(framebuffer.Pixel(2, 10)[0], 255);
   EXPECT_EQ(framebuffer.Pixel(2, 5)[0], 128);
