@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cstring>
 
+#if defined(__SSSE3__)
+#include <tmmintrin.h>
+#endif
+
 namespace flagsim::render {
 namespace {
 
@@ -11,12 +15,34 @@ uint32_t ToByte(float value) {
   return static_cast<uint32_t>(static_cast<int32_t>(std::min(std::max(value * 255.0f + 0.5f, 0.0f), 255.0f)));
 }
 
-/// A plane's value along one row: at + step * (x - min_x).
-struct RowPlane {
-  float at, step;
-};
+/// A triangle's planes side by side: depth, 1 / w, the channels, then zeros up to whole
+/// vectors. A row's values of them all are then a few vector operations.
+struct Planes {
+  static constexpr int kDepth = 0, kInverseW = 1, kChannel = 2;
+  static constexpr int kCount = 16;
+  static_assert(kChannel + kPlaneChannels <= kCount);
 
-RowPlane AlongRow(const Plane& plane, float fy) { return RowPlane{plane.origin + plane.dy * fy, plane.dx}; }
+  explicit Planes(const TriangleSetup& t) {
+    const auto put = [this](int k, const Plane& plane) {
+      origin[k] = plane.origin;
+      dx[k] = plane.dx;
+      dy[k] = plane.dy;
+    };
+    put(kDepth, t.depth);
+    put(kInverseW, t.inverse_w);
+    for (int k = 0; k < kPlaneChannels; ++k) put(kChannel + k, t.channels[k]);
+  }
+
+  /// Every plane along row fy: at[k] + dx[k] * fx at fx pixels from the box's first column.
+  void AlongRow(float fy, float at[kCount]) const {
+#pragma omp simd
+    for (int k = 0; k < kCount; ++k) at[k] = origin[k] + dy[k] * fy;
+  }
+
+  alignas(32) float origin[kCount] = {};
+  alignas(32) float dx[kCount] = {};
+  alignas(32) float dy[kCount] = {};
+};
 
 /// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
 /// base the material's colour, times the pattern's texel at (u, v) (channels 6, 7) when
@@ -27,21 +53,23 @@ class BlockShader {
  public:
   static constexpr int kChannels = kPatterned ? 8 : 6;
 
-  BlockShader(const TriangleSetup& t, const Material& material, const RgbxTexture& pattern, float fy)
-      : inverse_w_(AlongRow(t.inverse_w, fy)),
+  BlockShader(const Planes& planes, const Material& material, const RgbxTexture& pattern)
+      : planes_(planes),
         base_{material.colour[0], material.colour[1], material.colour[2]},
-        pattern_(pattern) {
-    for (int k = 0; k < kChannels; ++k) channel_[k] = AlongRow(t.channels[k], fy);
-  }
+        pattern_(pattern) {}
 
-  /// The RGBX colours at fx[i] pixels from the box's first column.
-  void Shade(const float fx[kSpanLanes], uint32_t rgbx[kSpanLanes]) const {
+  /// The RGBX colours at fx[i] pixels from the box's first column of the row `at` is along.
+  void Shade(const float at[Planes::kCount], const float fx[kSpanLanes], uint32_t rgbx[kSpanLanes]) const {
+    const float* step = planes_.dx;
     float w[kSpanLanes], c[kChannels][kSpanLanes];
 #pragma omp simd
-    for (int i = 0; i < kSpanLanes; ++i) w[i] = 1.0f / (inverse_w_.at + inverse_w_.step * fx[i]);
+    for (int i = 0; i < kSpanLanes; ++i) {
+      w[i] = 1.0f / (at[Planes::kInverseW] + step[Planes::kInverseW] * fx[i]);
+    }
     for (int k = 0; k < kChannels; ++k) {
+      const float channel_at = at[Planes::kChannel + k], channel_step = step[Planes::kChannel + k];
 #pragma omp simd
-      for (int i = 0; i < kSpanLanes; ++i) c[k][i] = (channel_[k].at + channel_[k].step * fx[i]) * w[i];
+      for (int i = 0; i < kSpanLanes; ++i) c[k][i] = (channel_at + channel_step * fx[i]) * w[i];
     }
     float base[3][kSpanLanes];
     if constexpr (kPatterned) {
@@ -79,19 +107,19 @@ class BlockShader {
     }
   }
 
-  RowPlane inverse_w_;
-  RowPlane channel_[kChannels];
+  const Planes& planes_;
   float base_[3];
   const RgbxTexture& pattern_;
 };
 
 /// The n pixels of a row from fx0 pixels past the box's first column, kSpanLanes at a time:
 /// the depth test, then where any pixel of the block is in front, the block's colours stored
-/// to those pixels. Lanes past the span repeat its last pixel and are masked off. depth and
-/// rgbx point at the span's first pixel.
+/// to those pixels. Lanes past the span repeat its last pixel and are masked off. `at` holds
+/// the planes along the row; depth and rgbx point at the span's first pixel.
 template <bool kPatterned>
-void FillSpan(const BlockShader<kPatterned>& shader, const RowPlane& z, float fx0, int n, float* depth,
-              uint32_t* rgbx) {
+void FillSpan(const BlockShader<kPatterned>& shader, const Planes& planes, const float at[Planes::kCount],
+              float fx0, int n, float* depth, uint32_t* rgbx) {
+  const float z_at = at[Planes::kDepth], z_step = planes.dx[Planes::kDepth];
   for (int start = 0; start < n; start += kSpanLanes, depth += kSpanLanes, rgbx += kSpanLanes) {
     float fx[kSpanLanes];
     int32_t in_front[kSpanLanes];
@@ -99,7 +127,7 @@ void FillSpan(const BlockShader<kPatterned>& shader, const RowPlane& z, float fx
 #pragma omp simd reduction(| : any)
     for (int i = 0; i < kSpanLanes; ++i) {
       fx[i] = fx0 + float(std::min(start + i, n - 1));
-      const float here = z.at + z.step * fx[i];
+      const float here = z_at + z_step * fx[i];
       const bool nearer = start + i < n && here < depth[i];
       depth[i] = nearer ? here : depth[i];
       in_front[i] = nearer;
@@ -107,37 +135,43 @@ void FillSpan(const BlockShader<kPatterned>& shader, const RowPlane& z, float fx
     }
     if (!any) continue;
     uint32_t colour[kSpanLanes];
-    shader.Shade(fx, colour);
+    shader.Shade(at, fx, colour);
 #pragma omp simd
     for (int i = 0; i < kSpanLanes; ++i) rgbx[i] = in_front[i] ? colour[i] : rgbx[i];
   }
 }
 
-template <bool kPatterned>
-void FillSpanInterpolated(const TriangleSetup& t, const Material& material, const RgbxTexture& pattern,
-                          float fy, int first, int last, float* depth, uint32_t* rgbx) {
-  const BlockShader<kPatterned> shader(t, material, pattern, fy);
-  FillSpan(shader, AlongRow(t.depth, fy), float(first - t.min_x), last - first + 1, depth, rgbx);
+/// n RGBX words => n RGB pixels. With SSSE3, four at a time: one shuffle packs their 16 bytes
+/// into 12, stored as 16 whose last 4 (pixel 4 and a byte of pixel 5) are written again with
+/// the next four; the row's last pixels go one by one, so nothing is written past it.
+void RgbxToRgb(const uint32_t* rgbx, int n, uint8_t* rgb) {
+  int i = 0;
+#if defined(__SSSE3__)
+  const __m128i pack = _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+  for (; i + 6 <= n; i += 4) {
+    const __m128i four = _mm_loadu_si128(reinterpret_cast<const __m128i*>(rgbx + i));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(rgb + 3 * i), _mm_shuffle_epi8(four, pack));
+  }
+#endif
+  for (; i < n; ++i) std::memcpy(rgb + 3 * i, rgbx + i, 3);
 }
 
-/// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel.
-/// depth and rgbx point at pixel `first`.
-void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy, int first, int last,
-                   float* depth, uint32_t* rgbx) {
+/// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel, for the
+/// n pixels of a row from fx0 pixels past the box's first column. `at` holds the planes along
+/// the row; depth and rgbx point at the span's first pixel.
+void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, const Planes& planes,
+                   const float at[Planes::kCount], float fx0, int n, float* depth, uint32_t* rgbx) {
   const RenderScene& scene = *context.scene;
   const Material& material = scene.materials[t.material];
-  const RowPlane z = AlongRow(t.depth, fy), inverse_w = AlongRow(t.inverse_w, fy);
-  RowPlane channel[kPlaneChannels];
-  for (int k = 0; k < kPlaneChannels; ++k) channel[k] = AlongRow(t.channels[k], fy);
-  for (int x = first; x <= last; ++x) {
-    const float fx = float(x - t.min_x);
-    const float depth_here = z.at + z.step * fx;
-    float& depth_there = depth[x - first];
-    if (!(depth_here < depth_there)) continue;
-    depth_there = depth_here;
-    const float w = 1.0f / (inverse_w.at + inverse_w.step * fx);
+  const auto value = [&](int k, float fx) { return at[k] + planes.dx[k] * fx; };
+  for (int i = 0; i < n; ++i) {
+    const float fx = fx0 + float(i);
+    const float depth_here = value(Planes::kDepth, fx);
+    if (!(depth_here < depth[i])) continue;
+    depth[i] = depth_here;
+    const float w = 1.0f / value(Planes::kInverseW, fx);
     float c[kPlaneChannels];
-    for (int k = 0; k < kPlaneChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
+    for (int k = 0; k < kPlaneChannels; ++k) c[k] = value(Planes::kChannel + k, fx) * w;
     Eigen::Vector3f normal = Eigen::Vector3f(c[3], c[4], c[5]).normalized();
     if (t.back_facing) normal = -normal;
     const Shade shade =
@@ -148,7 +182,20 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy
       base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) * (1.0f / 255));
     }
     const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
-    rgbx[x - first] = PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
+    rgbx[i] = PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
+  }
+}
+
+/// Rows y_first .. y_last of a triangle in the tile, each row's pixels given by `spans` (RowSpans
+/// or LaneSpans, positioned at y_first) and drawn by fill_span(y, first, last).
+template <class Spans, class FillSpanAt>
+void FillRows(const TileTarget& target, int y_first, int y_last, Spans spans, const FillSpanAt& fill_span) {
+  for (int y = y_first; y <= y_last; ++y, spans.NextRow()) {
+    int first = 0, last = 0;
+    if (!spans.Span(&first, &last)) continue;
+    first = std::max(first, target.rect.x0);
+    last = std::min(last, target.rect.x1 - 1);
+    if (first <= last) fill_span(y, first, last);
   }
 }
 
@@ -182,12 +229,7 @@ void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer
   const TileRect& tile = target.rect;
   const int pixels = tile.x1 - tile.x0;
   for (int y = tile.y0; y < tile.y1; ++y) {
-    const uint8_t* __restrict rgbx = target.Pixel(tile.x0, y);
-    uint8_t* __restrict rgb = framebuffer->Pixel(tile.x0, y);
-#pragma omp simd
-    for (int i = 0; i < pixels; ++i) {
-      for (int k = 0; k < 3; ++k) rgb[3 * i + k] = rgbx[4 * i + k];
-    }
+    RgbxToRgb(target.Rgbx(tile.x0, y), pixels, framebuffer->Pixel(tile.x0, y));
     if (keep_depth) {
       std::memcpy(&framebuffer->depth[size_t(y) * framebuffer->width + tile.x0], target.Depth(tile.x0, y),
                   size_t(pixels) * sizeof(float));
@@ -214,26 +256,38 @@ void ClearTile(const RenderScene& scene, const TileTarget& target) {
 
 void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, const TileTarget& target) {
   const TileRect& tile = target.rect;
-  const Material& material = context.scene->materials[t.material];
   const int y_first = std::max(t.min_y, tile.y0), y_last = std::min(t.max_y, tile.y1 - 1);
-  if (y_first > y_last) return;
-  RowSpans spans(t, y_first);
-  for (int y = y_first; y <= y_last; ++y, spans.NextRow()) {
-    int first = 0, last = 0;
-    if (!spans.Span(&first, &last)) continue;
-    first = std::max(first, tile.x0);
-    last = std::min(last, tile.x1 - 1);
-    if (first > last) continue;
-    const float fy = float(y - t.min_y);
-    float* depth = target.Depth(first, y);
-    uint32_t* rgbx = target.Rgbx(first, y);
-    if (context.mode == ShadingMode::kPhong) {
-      FillSpanPhong(t, context, fy, first, last, depth, rgbx);
-    } else if (material.patterned) {
-      FillSpanInterpolated<true>(t, material, *context.pattern, fy, first, last, depth, rgbx);
+  const int x_first = std::max(t.min_x, tile.x0), x_last = std::min(t.max_x, tile.x1 - 1);
+  if (y_first > y_last || x_first > x_last) return;
+  const Planes planes(t);
+  // fill(at, fx0, n, depth, rgbx) draws n pixels of a row: each row's planes and pixels for it.
+  const auto fill_rows = [&](const auto& fill) {
+    const auto fill_span = [&](int y, int first, int last) {
+      alignas(32) float at[Planes::kCount];
+      planes.AlongRow(float(y - t.min_y), at);
+      fill(at, float(first - t.min_x), last - first + 1, target.Depth(first, y), target.Rgbx(first, y));
+    };
+    if (t.narrow && x_last - x_first < LaneSpans::kWidth) {
+      FillRows(target, y_first, y_last, LaneSpans(t, x_first, x_last, y_first), fill_span);
     } else {
-      FillSpanInterpolated<false>(t, material, *context.pattern, fy, first, last, depth, rgbx);
+      FillRows(target, y_first, y_last, RowSpans(t, y_first), fill_span);
     }
+  };
+  const Material& material = context.scene->materials[t.material];
+  if (context.mode == ShadingMode::kPhong) {
+    fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
+      FillSpanPhong(t, context, planes, at, fx0, n, depth, rgbx);
+    });
+  } else if (material.patterned) {
+    const BlockShader<true> shader(planes, material, *context.pattern);
+    fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
+      FillSpan(shader, planes, at, fx0, n, depth, rgbx);
+    });
+  } else {
+    const BlockShader<false> shader(planes, material, *context.pattern);
+    fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
+      FillSpan(shader, planes, at, fx0, n, depth, rgbx);
+    });
   }
 }
 

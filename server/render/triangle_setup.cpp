@@ -72,6 +72,12 @@ bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVer
     const bool left = setup->edge_dy[i] < 0;
     setup->edge_bias[i] = top || left ? 0 : -1;
   }
+  // LaneSpans' int32 holds E: with the vertices within W = kWidth px across and H = 256 px
+  // down, pixel centres in a window are within W + kWidth px across and H + 1 px down of each
+  // vertex, so |E| <= |dx| (H + 1) + |dy| (W + kWidth) <= (8 * 257 + 256 * 16) px^2 * 256^2 < 2^31.
+  setup->narrow =
+      std::max({X[0], X[1], X[2]}) - std::min({X[0], X[1], X[2]}) <= LaneSpans::kWidth * kSubpixels &&
+      std::max({Y[0], Y[1], Y[2]}) - std::min({Y[0], Y[1], Y[2]}) <= 256 * kSubpixels;
 
   float x[3], y[3], values[3];
   for (int i = 0; i < 3; ++i) {
@@ -140,6 +146,48 @@ void RowSpans::NextRow() {
       edge.remainder -= edge.divisor;
       ++edge.quotient;
     }
+  }
+}
+
+namespace {
+
+/// Edge i's E + bias at the centre of pixel (x, y), in subpixels squared: E(P) = dx (Py - y_i) - dy (Px -
+/// x_i).
+int64_t EdgeAt(const TriangleSetup& setup, int i, int64_t x, int64_t y) {
+  const int64_t half = kSubpixels / 2;
+  return setup.edge_dx[i] * (y * kSubpixels + half - setup.edge_y[i]) -
+         setup.edge_dy[i] * (x * kSubpixels + half - setup.edge_x[i]) + setup.edge_bias[i];
+}
+
+}  // namespace
+
+LaneSpans::LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y) : x0_(x0) {
+  for (int i = 0; i < kWidth; ++i) past_end_[i] = x0 + i > x_last ? -1 : 0;
+  for (int k = 0; k < 3; ++k) {
+    growth_[k] = int32_t(setup.edge_dx[k] * kSubpixels);
+    const int64_t at_x0 = EdgeAt(setup, k, x0, y), per_pixel = -setup.edge_dy[k] * kSubpixels;
+    for (int i = 0; i < kWidth; ++i) inside_[k][i] = int32_t(at_x0 + per_pixel * i);
+  }
+}
+
+bool LaneSpans::Span(int* first, int* last) const {
+  // Inside all three edges and not past x_last: no sign bit in the or. Covered lanes are contiguous.
+  int low = kWidth, high = -1;
+#pragma omp simd reduction(min : low) reduction(max : high)
+  for (int i = 0; i < kWidth; ++i) {
+    const bool covered = (inside_[0][i] | inside_[1][i] | inside_[2][i] | past_end_[i]) >= 0;
+    low = std::min(low, covered ? i : kWidth);
+    high = std::max(high, covered ? i : -1);
+  }
+  *first = x0_ + low;
+  *last = x0_ + high;
+  return low <= high;
+}
+
+void LaneSpans::NextRow() {
+  for (int k = 0; k < 3; ++k) {
+#pragma omp simd
+    for (int i = 0; i < kWidth; ++i) inside_[k][i] += growth_[k];
   }
 }
 

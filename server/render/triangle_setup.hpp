@@ -40,6 +40,7 @@ struct TriangleSetup {
   Plane inverse_w;                 ///< 1 / w
   Plane channels[kPlaneChannels];  ///< channel / w: divide by inverse_w for the channel
   bool back_facing = false;        ///< the vertices run clockwise as seen (after the y flip: counter)
+  bool narrow = false;             ///< small enough for LaneSpans in any window
   int material = 0;                ///< index into the scene's materials
 };
 
@@ -71,6 +72,26 @@ class RowSpans {
   };
   Edge edges_[3];
   int min_x_, max_x_;
+};
+
+/// The same spans in a window of kWidth columns from x0, for narrow triangles: each edge
+/// function evaluated at the window's pixel centres in int32, a row's span the lanes inside all
+/// three edges. No division, no branch per edge.
+class LaneSpans {
+ public:
+  static constexpr int kWidth = 8;  ///< px
+
+  /// Positioned at row y, spans limited to columns x0 .. x_last (x_last - x0 < kWidth), for a
+  /// `narrow` setup.
+  LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y);
+  bool Span(int* first, int* last) const;  ///< this row's covered pixels; false if none
+  void NextRow();
+
+ private:
+  int32_t inside_[3][kWidth];  ///< E + bias at each lane's pixel centre: >= 0 inside the edge
+  int32_t growth_[3];          ///< of E a row
+  int32_t past_end_[kWidth];   ///< -1 for lanes past x_last, else 0
+  int x0_;                     ///< the window's first column
 };
 
 }  // namespace flagsim::render
