@@ -89,6 +89,7 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   }
   BinStage(camera.width, camera.height, options.tile_size);
   pattern_.Assign(scene.pattern);
+  SkyRows(scene, camera.height, &sky_rows_);
   ShadeContext context;
   context.scene = &scene;
   context.pattern = &pattern_;
@@ -251,8 +252,8 @@ void Renderer::TileStage(const ShadeContext& context, const RenderOptions& optio
       rect.y0 = (index / tiles_x_) * size;
       rect.x1 = std::min(rect.x0 + size, framebuffer->width);
       rect.y1 = std::min(rect.y0 + size, framebuffer->height);
-      const TileTarget target = buffer.Target(rect, framebuffer->height);
-      ClearTile(*context.scene, target);
+      const TileTarget target = buffer.Target(rect);
+      ClearTile(sky_rows_.data(), target);
       for (const uint32_t i : triangle_bins_[index]) RasterizeTriangle(setups_[i], context, target);
       for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
       CopyOut(target, options.keep_depth, framebuffer);

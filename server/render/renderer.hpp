@@ -54,7 +54,8 @@ class Renderer {
   std::vector<std::vector<TriangleSetup>> chunks_;  ///< primitive stage output per chunk
   std::vector<TriangleSetup> setups_;               ///< all triangles, in order
   std::vector<LineSetup> lines_;
-  RgbxTexture pattern_;  ///< the scene's, for the tiles
+  RgbxTexture pattern_;             ///< the scene's, for the tiles
+  std::vector<uint32_t> sky_rows_;  ///< the sky's colour on each row of the image
   int tiles_x_ = 0, tiles_y_ = 0;
   std::vector<std::vector<uint32_t>> triangle_bins_;  ///< per tile: indices into setups_
   std::vector<std::vector<uint32_t>> line_bins_;      ///< per tile: indices into lines_

@@ -206,10 +206,9 @@ TileBuffer::TileBuffer(int size)
       rgbx_(stride_ * size, PackRgbx(0, 0, 0)),
       depth_(stride_ * size, 1.0f) {}
 
-TileTarget TileBuffer::Target(const TileRect& rect, int image_height) {
+TileTarget TileBuffer::Target(const TileRect& rect) {
   TileTarget target;
   target.rect = rect;
-  target.image_height = image_height;
   target.rgbx = rgbx_.data();
   target.depth = depth_.data();
   target.stride = stride_;
@@ -237,13 +236,20 @@ void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer
   }
 }
 
-void ClearTile(const RenderScene& scene, const TileTarget& target) {
+void SkyRows(const RenderScene& scene, int height, std::vector<uint32_t>* rows) {
+  rows->resize(size_t(height));
+  for (int y = 0; y < height; ++y) {
+    const float t = height > 1 ? float(y) / (height - 1) : 0.0f;
+    const Eigen::Vector3f sky = scene.sky_top + t * (scene.sky_horizon - scene.sky_top);
+    (*rows)[y] = PackRgbx(ToByte(sky[0]), ToByte(sky[1]), ToByte(sky[2]));
+  }
+}
+
+void ClearTile(const uint32_t* sky_rows, const TileTarget& target) {
   const TileRect& tile = target.rect;
   const int pixels = tile.x1 - tile.x0;
   for (int y = tile.y0; y < tile.y1; ++y) {
-    const float t = target.image_height > 1 ? float(y) / (target.image_height - 1) : 0.0f;
-    const Eigen::Vector3f sky = scene.sky_top + t * (scene.sky_horizon - scene.sky_top);
-    const uint32_t colour = PackRgbx(ToByte(sky[0]), ToByte(sky[1]), ToByte(sky[2]));
+    const uint32_t colour = sky_rows[y];
     uint32_t* rgbx = target.Rgbx(tile.x0, y);
     float* depth = target.Depth(tile.x0, y);
 #pragma omp simd

@@ -30,7 +30,6 @@ constexpr int kSpanLanes = 8;
 /// room for kSpanLanes - 1 pixels past x1 (see kSpanLanes).
 struct TileTarget {
   TileRect rect;
-  int image_height = 0;  ///< px, for the sky's gradient
   uint32_t* rgbx = nullptr;
   float* depth = nullptr;
   size_t stride = 0;  ///< pixels from one row to the next, rect.x1 - rect.x0 + kSpanLanes - 1 and up
@@ -46,8 +45,8 @@ struct TileTarget {
 class TileBuffer {
  public:
   explicit TileBuffer(int size);
-  /// The buffer as the target of `rect` in an image `image_height` px high.
-  TileTarget Target(const TileRect& rect, int image_height);
+  /// The buffer as the target of `rect`.
+  TileTarget Target(const TileRect& rect);
 
  private:
   size_t stride_;
@@ -77,8 +76,12 @@ struct ShadeContext {
   Eigen::Vector3f eye = Eigen::Vector3f::Zero();  ///< world frame, for per-pixel lighting
 };
 
-/// Sky gradient and far depth over the tile.
-void ClearTile(const RenderScene& scene, const TileTarget& target);
+/// The sky's RGBX colour on each row of an image `height` px high: sky_top on the first row,
+/// blending linearly to sky_horizon on the last.
+void SkyRows(const RenderScene& scene, int height, std::vector<uint32_t>* rows);
+
+/// The sky (`sky_rows[y]` on image row y) and far depth over the tile.
+void ClearTile(const uint32_t* sky_rows, const TileTarget& target);
 
 /// Draws the part of `triangle` inside `tile`.
 ///   kFlat, kGouraud: channels = diffuse rgb, specular rgb, u, v; colour = base * D + S

@@ -14,7 +14,7 @@ namespace flagsim::render {
 template <class Draw>
 void DrawInTile(Framebuffer* framebuffer, const TileRect& rect, Draw draw) {
   TileBuffer buffer(std::max(rect.x1 - rect.x0, rect.y1 - rect.y0));
-  const TileTarget target = buffer.Target(rect, framebuffer->height);
+  const TileTarget target = buffer.Target(rect);
   for (int y = rect.y0; y < rect.y1; ++y) {
     for (int x = rect.x0; x < rect.x1; ++x) {
       std::memcpy(target.Pixel(x, y), framebuffer->Pixel(x, y), 3);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "tile_drawing.hpp"
 
 namespace flagsim::render {
@@ -87,7 +89,10 @@ TEST(TileRaster, ClearPaintsTheSkyGradientAndFarDepth) {
   Framebuffer framebuffer;
   framebuffer.Resize(4, 11);
   std::fill(framebuffer.depth.begin(), framebuffer.depth.end(), 0.0f);
-  DrawInTile(&framebuffer, TileRect{0, 0, 4, 11}, [&](const TileTarget& tile) { ClearTile(scene, tile); });
+  std::vector<uint32_t> sky_rows;
+  SkyRows(scene, 11, &sky_rows);
+  DrawInTile(&framebuffer, TileRect{0, 0, 4, 11},
+             [&](const TileTarget& tile) { ClearTile(sky_rows.data(), tile); });
   EXPECT_EQ(framebuffer.Pixel(2, 0)[2], 255);
   EXPECT_EQ(framebuffer.Pixel(2, 10)[0], 255);
   EXPECT_EQ(framebuffer.Pixel(2, 5)[0], 128);
