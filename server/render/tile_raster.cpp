@@ -11,8 +11,11 @@ namespace flagsim::render {
 namespace {
 
 /// 0..1 => 0..255, rounded and clamped; branch-free so that the loops using it vectorise.
+/// Clamped above before the conversion to int and below after it, which is min(max(v, 0), 255)
+/// converted, in fewer vector instructions.
 uint32_t ToByte(float value) {
-  return static_cast<uint32_t>(static_cast<int32_t>(std::min(std::max(value * 255.0f + 0.5f, 0.0f), 255.0f)));
+  const int32_t truncated = static_cast<int32_t>(std::min(value * 255.0f + 0.5f, 255.0f));
+  return static_cast<uint32_t>(std::max(truncated, 0));
 }
 
 /// A triangle's planes side by side: depth, 1 / w, the channels, then zeros up to whole
@@ -47,7 +50,7 @@ struct Planes {
 /// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
 /// base the material's colour, times the pattern's texel at (u, v) (channels 6, 7) when
 /// `kPatterned`. Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block
-/// of kSpanLanes pixels at once, each step a loop over the lanes so that it vectorises.
+/// of kSpanLanes pixels at once.
 template <bool kPatterned>
 class BlockShader {
  public:
@@ -58,53 +61,38 @@ class BlockShader {
         base_{material.colour[0], material.colour[1], material.colour[2]},
         pattern_(pattern) {}
 
-  /// The RGBX colours at fx[i] pixels from the box's first column of the row `at` is along.
-  void Shade(const float at[Planes::kCount], const float fx[kSpanLanes], uint32_t rgbx[kSpanLanes]) const {
+  /// The colours at fx[i] pixels from the box's first column of the row `at` is along, stored
+  /// to rgbx[i] where in_front[i]. One loop over the lanes, so that the compiler keeps each
+  /// step's values in vector registers.
+  void Shade(const float at[Planes::kCount], const float fx[kSpanLanes], const int32_t in_front[kSpanLanes],
+             uint32_t rgbx[kSpanLanes]) const {
     const float* step = planes_.dx;
-    float w[kSpanLanes], c[kChannels][kSpanLanes];
 #pragma omp simd
     for (int i = 0; i < kSpanLanes; ++i) {
-      w[i] = 1.0f / (at[Planes::kInverseW] + step[Planes::kInverseW] * fx[i]);
-    }
-    for (int k = 0; k < kChannels; ++k) {
-      const float channel_at = at[Planes::kChannel + k], channel_step = step[Planes::kChannel + k];
-#pragma omp simd
-      for (int i = 0; i < kSpanLanes; ++i) c[k][i] = (channel_at + channel_step * fx[i]) * w[i];
-    }
-    float base[3][kSpanLanes];
-    if constexpr (kPatterned) {
-      Tint(c[6], c[7], base);
-    } else {
-#pragma omp simd
-      for (int i = 0; i < kSpanLanes; ++i) {
-        for (int j = 0; j < 3; ++j) base[j][i] = base_[j];
+      const float w = 1.0f / (at[Planes::kInverseW] + step[Planes::kInverseW] * fx[i]);
+      float c[kChannels];
+      for (int k = 0; k < kChannels; ++k) {
+        c[k] = (at[Planes::kChannel + k] + step[Planes::kChannel + k] * fx[i]) * w;
       }
-    }
-#pragma omp simd
-    for (int i = 0; i < kSpanLanes; ++i) {
-      rgbx[i] = PackRgbx(ToByte(base[0][i] * c[0][i] + c[3][i]), ToByte(base[1][i] * c[1][i] + c[4][i]),
-                         ToByte(base[2][i] * c[2][i] + c[5][i]));
+      float base[3] = {base_[0], base_[1], base_[2]};
+      if constexpr (kPatterned) {
+        const uint32_t texel = pattern_.texels[TexelIndex(c[6], c[7])];
+        for (int j = 0; j < 3; ++j) base[j] *= float(texel >> 8 * j & 0xff) * (1.0f / 255);
+      }
+      const uint32_t colour = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
+                                       ToByte(base[2] * c[2] + c[5]));
+      rgbx[i] = in_front[i] ? colour : rgbx[i];
     }
   }
 
  private:
-  /// base * (texel / 255) per channel, the texel at (u[i], v[i]) picked as Texture::Sample does.
-  void Tint(const float u[kSpanLanes], const float v[kSpanLanes], float base[3][kSpanLanes]) const {
+  /// The texel at (u, v), picked as Texture::Sample does.
+  int32_t TexelIndex(float u, float v) const {
     const int width = pattern_.width, height = pattern_.height;
-    int32_t index[kSpanLanes];
-#pragma omp simd
-    for (int i = 0; i < kSpanLanes; ++i) {
-      int x = static_cast<int>(u[i] * width), y = static_cast<int>(v[i] * height);
-      x = x < 0 ? 0 : x >= width ? width - 1 : x;
-      y = y < 0 ? 0 : y >= height ? height - 1 : y;
-      index[i] = y * width + x;
-    }
-    const uint32_t* texels = pattern_.texels.data();
-#pragma omp simd
-    for (int i = 0; i < kSpanLanes; ++i) {
-      const uint32_t texel = texels[index[i]];
-      for (int j = 0; j < 3; ++j) base[j][i] = base_[j] * (float(texel >> 8 * j & 0xff) * (1.0f / 255));
-    }
+    int x = static_cast<int>(u * width), y = static_cast<int>(v * height);
+    x = x < 0 ? 0 : x >= width ? width - 1 : x;
+    y = y < 0 ? 0 : y >= height ? height - 1 : y;
+    return y * width + x;
   }
 
   const Planes& planes_;
@@ -133,11 +121,7 @@ void FillSpan(const BlockShader<kPatterned>& shader, const Planes& planes, const
       in_front[i] = nearer;
       any |= nearer;
     }
-    if (!any) continue;
-    uint32_t colour[kSpanLanes];
-    shader.Shade(at, fx, colour);
-#pragma omp simd
-    for (int i = 0; i < kSpanLanes; ++i) rgbx[i] = in_front[i] ? colour[i] : rgbx[i];
+    if (any) shader.Shade(at, fx, in_front, rgbx);
   }
 }
 
