@@ -170,8 +170,23 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, const Pl
   }
 }
 
+/// Every pixel of columns first .. last, row after row.
+class BoxSpans {
+ public:
+  BoxSpans(int first, int last) : first_(first), last_(last) {}
+  bool Span(int* first, int* last) const {
+    *first = first_;
+    *last = last_;
+    return true;
+  }
+  void NextRow() {}
+
+ private:
+  int first_, last_;
+};
+
 /// Rows y_first .. y_last of a triangle in the tile, each row's pixels given by `spans` (RowSpans
-/// or LaneSpans, positioned at y_first) and drawn by fill_span(y, first, last).
+/// LaneSpans or BoxSpans, positioned at y_first) and drawn by fill_span(y, first, last).
 template <class Spans, class FillSpanAt>
 void FillRows(const TileTarget& target, int y_first, int y_last, Spans spans, const FillSpanAt& fill_span) {
   for (int y = y_first; y <= y_last; ++y, spans.NextRow()) {
@@ -249,6 +264,11 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
   const int y_first = std::max(t.min_y, tile.y0), y_last = std::min(t.max_y, tile.y1 - 1);
   const int x_first = std::max(t.min_x, tile.x0), x_last = std::min(t.max_x, tile.x1 - 1);
   if (y_first > y_last || x_first > x_last) return;
+  // Narrow triangles are walked in a window; larger ones are first tested against the box,
+  // which skips the rows of boxes they miss or cover whole.
+  const bool in_window = t.narrow && x_last - x_first < LaneSpans::kWidth;
+  const BoxCover cover = in_window ? BoxCover::kPart : CoverOfBox(t, x_first, y_first, x_last, y_last);
+  if (cover == BoxCover::kNone) return;
   const Planes planes(t);
   // fill(at, fx0, n, depth, rgbx) draws n pixels of a row: each row's planes and pixels for it.
   const auto fill_rows = [&](const auto& fill) {
@@ -257,8 +277,10 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
       planes.AlongRow(float(y - t.min_y), at);
       fill(at, float(first - t.min_x), last - first + 1, target.Depth(first, y), target.Rgbx(first, y));
     };
-    if (t.narrow && x_last - x_first < LaneSpans::kWidth) {
+    if (in_window) {
       FillRows(target, y_first, y_last, LaneSpans(t, x_first, x_last, y_first), fill_span);
+    } else if (cover == BoxCover::kAll) {
+      FillRows(target, y_first, y_last, BoxSpans(x_first, x_last), fill_span);
     } else {
       FillRows(target, y_first, y_last, RowSpans(t, y_first), fill_span);
     }

@@ -191,6 +191,30 @@ void LaneSpans::NextRow() {
   }
 }
 
+namespace {
+
+/// Edge i's E + bias at the centre of pixel (x, y), in subpixels squared: >= 0 inside.
+int64_t EdgeAt(const TriangleSetup& setup, int i, int x, int y) {
+  const int64_t half = kSubpixels / 2;
+  return setup.edge_dx[i] * (int64_t(y) * kSubpixels + half - setup.edge_y[i]) -
+         setup.edge_dy[i] * (int64_t(x) * kSubpixels + half - setup.edge_x[i]) + setup.edge_bias[i];
+}
+
+}  // namespace
+
+BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1) {
+  bool all = true;
+  for (int i = 0; i < 3; ++i) {
+    int inside = 0;
+    for (const int x : {x0, x1}) {
+      for (const int y : {y0, y1}) inside += EdgeAt(setup, i, x, y) >= 0;
+    }
+    if (inside == 0) return BoxCover::kNone;
+    all = all && inside == 4;
+  }
+  return all ? BoxCover::kAll : BoxCover::kPart;
+}
+
 bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last) {
   int64_t low = setup.min_x, high = setup.max_x;
   const int64_t py = int64_t(y) * kSubpixels + kSubpixels / 2;

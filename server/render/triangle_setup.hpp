@@ -55,6 +55,14 @@ bool IsBackFacing(const ScreenVertex& a, const ScreenVertex& b, const ScreenVert
 /// The covered pixels of row y: [*first, *last] within [min_x, max_x]; false if none.
 bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last);
 
+/// How much of a box of pixels inside the triangle's box is covered.
+enum class BoxCover { kNone, kPart, kAll };
+
+/// Pixels [x0, x1] x [y0, y1] (inclusive, within min_x .. max_x, min_y .. max_y), from the edge
+/// functions at the four corner pixels' centres: each is linear, so all four outside one edge
+/// leave the box uncovered, and all four inside every edge cover it all.
+BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1);
+
 /// The same spans row after row, with no division per row: each edge's bound floor(K / m)
 /// is carried as quotient and remainder, and K grows by the same amount every row.
 class RowSpans {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -195,6 +196,38 @@ TEST(LaneSpans, NarrowTrianglesGetTheSameSpansInAnyWindow) {
     }
   }
   EXPECT_GT(narrow, 1000);
+}
+
+TEST(CoverOfBox, NoneAndAllAgreeWithTheRowSpans) {
+  std::mt19937 random(13);
+  std::uniform_real_distribution<float> coordinate(-20.0f, 120.0f);
+  int decided = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    TriangleSetup setup;
+    if (!SetupTriangle(At(coordinate(random), coordinate(random)), At(coordinate(random), coordinate(random)),
+                       At(coordinate(random), coordinate(random)), 100, 100, &setup)) {
+      continue;
+    }
+    std::uniform_int_distribution<int> x(setup.min_x, setup.max_x), y(setup.min_y, setup.max_y);
+    for (int box = 0; box < 20; ++box) {
+      const auto [x0, x1] = std::minmax(x(random), x(random));
+      const auto [y0, y1] = std::minmax(y(random), y(random));
+      int covered = 0;
+      for (int row = y0; row <= y1; ++row) {
+        int first = 0, last = 0;
+        if (RowSpan(setup, row, &first, &last))
+          covered += std::max(0, std::min(last, x1) - std::max(first, x0) + 1);
+      }
+      const BoxCover cover = CoverOfBox(setup, x0, y0, x1, y1);
+      if (cover == BoxCover::kNone) {
+        EXPECT_EQ(covered, 0) << "trial " << trial;
+      } else if (cover == BoxCover::kAll) {
+        EXPECT_EQ(covered, (x1 - x0 + 1) * (y1 - y0 + 1)) << "trial " << trial;
+      }
+      decided += cover != BoxCover::kPart;
+    }
+  }
+  EXPECT_GT(decided, 1000);
 }
 
 TEST(LaneSpans, OnlySmallTrianglesAreNarrow) {
