@@ -4,7 +4,7 @@
 #include <cstring>
 
 #if defined(__SSSE3__)
-#include <tmmintrin.h>
+#include <immintrin.h>
 #endif
 
 namespace flagsim::render {
@@ -125,16 +125,28 @@ void FillSpan(const BlockShader<kPatterned>& shader, const Planes& planes, const
   }
 }
 
-/// n RGBX words => n RGB pixels. With SSSE3, four at a time: one shuffle packs their 16 bytes
-/// into 12, stored as 16 whose last 4 (pixel 4 and a byte of pixel 5) are written again with
-/// the next four; the row's last pixels go one by one, so nothing is written past it.
+/// n RGBX words => n RGB pixels. Where the CPU has them, vector shuffles pack 8 (AVX2) or 4
+/// (SSSE3) pixels at a time, and the store writes 8 or 4 bytes past them, which the next store
+/// writes again; the row's last pixels go one by one, so nothing is written past the row.
 void RgbxToRgb(const uint32_t* rgbx, int n, uint8_t* rgb) {
   int i = 0;
+#if defined(__AVX2__)
+  // In each 16-byte half, bytes R G B of its 4 pixels to the front; then the halves' 12-byte
+  // runs side by side.
+  const __m256i pack = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,  //
+                                        0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+  const __m256i join = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 3, 7);
+  for (; i + 11 <= n; i += 8) {
+    const __m256i eight = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(rgbx + i));
+    const __m256i packed = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(eight, pack), join);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(rgb + 3 * i), packed);
+  }
+#endif
 #if defined(__SSSE3__)
-  const __m128i pack = _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+  const __m128i pack4 = _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
   for (; i + 6 <= n; i += 4) {
     const __m128i four = _mm_loadu_si128(reinterpret_cast<const __m128i*>(rgbx + i));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(rgb + 3 * i), _mm_shuffle_epi8(four, pack));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(rgb + 3 * i), _mm_shuffle_epi8(four, pack4));
   }
 #endif
   for (; i < n; ++i) std::memcpy(rgb + 3 * i, rgbx + i, 3);
