@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#if defined(__SSSE3__)
+#if defined(__AVX2__)
 #include <immintrin.h>
 #endif
 
@@ -125,28 +125,31 @@ void FillSpan(const BlockShader<kPatterned>& shader, const Planes& planes, const
   }
 }
 
-/// n RGBX words => n RGB pixels. Where the CPU has them, vector shuffles pack 8 (AVX2) or 4
-/// (SSSE3) pixels at a time, and the store writes 8 or 4 bytes past them, which the next store
-/// writes again; the row's last pixels go one by one, so nothing is written past the row.
+/// n RGBX words => n RGB pixels. With AVX2, 8 pixels at a time: in each 16-byte half the
+/// R, G, B bytes of its 4 pixels go to the front, then the two 12-byte runs side by side. All
+/// 32 bytes are stored while 3 more pixels follow (the next 8 write the last 8 bytes again);
+/// the row's last pixels are stored as exactly 24 bytes, the very last 8 from n - 8 (which may
+/// write pixels again, with the same bytes), so nothing is written past the row.
 void RgbxToRgb(const uint32_t* rgbx, int n, uint8_t* rgb) {
   int i = 0;
 #if defined(__AVX2__)
-  // In each 16-byte half, bytes R G B of its 4 pixels to the front; then the halves' 12-byte
-  // runs side by side.
   const __m256i pack = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,  //
                                         0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
   const __m256i join = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 3, 7);
-  for (; i + 11 <= n; i += 8) {
-    const __m256i eight = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(rgbx + i));
-    const __m256i packed = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(eight, pack), join);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(rgb + 3 * i), packed);
-  }
-#endif
-#if defined(__SSSE3__)
-  const __m128i pack4 = _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
-  for (; i + 6 <= n; i += 4) {
-    const __m128i four = _mm_loadu_si128(reinterpret_cast<const __m128i*>(rgbx + i));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(rgb + 3 * i), _mm_shuffle_epi8(four, pack4));
+  const auto packed = [&](int first) {
+    const __m256i eight = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(rgbx + first));
+    return _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(eight, pack), join);
+  };
+  const auto store_24 = [&](int first) {
+    const __m256i bytes = packed(first);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(rgb + 3 * first), _mm256_castsi256_si128(bytes));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(rgb + 3 * first + 16), _mm256_extracti128_si256(bytes, 1));
+  };
+  for (; n - i >= 11; i += 8) _mm256_storeu_si256(reinterpret_cast<__m256i*>(rgb + 3 * i), packed(i));
+  for (; n - i > 8; i += 8) store_24(i);
+  if (n >= 8 && i < n) {
+    store_24(n - 8);
+    i = n;
   }
 #endif
   for (; i < n; ++i) std::memcpy(rgb + 3 * i, rgbx + i, 3);

@@ -99,5 +99,26 @@ TEST(TileRaster, ClearPaintsTheSkyGradientAndFarDepth) {
   EXPECT_EQ(framebuffer.depth[7], 1.0f);
 }
 
+TEST(TileRaster, CopyOutWritesTheTileAndNothingElse) {
+  for (int width = 1; width <= 40; ++width) {
+    Framebuffer framebuffer;
+    framebuffer.Resize(width + 3, 3);
+    const TileRect rect{1, 1, 1 + width, 2};
+    TileBuffer buffer(width);
+    const TileTarget target = buffer.Target(rect);
+    for (int x = rect.x0; x < rect.x1; ++x) *target.Rgbx(x, 1) = PackRgbx(x, 100 + x, 200 + x) | 0xff000000u;
+    CopyOut(target, /*keep_depth=*/false, &framebuffer);
+    for (int y = 0; y < 3; ++y) {
+      for (int x = 0; x < width + 3; ++x) {
+        const bool inside = y == 1 && x >= rect.x0 && x < rect.x1;
+        const uint8_t* pixel = framebuffer.Pixel(x, y);
+        EXPECT_EQ(pixel[0], inside ? x : 0) << width << ": " << x << "," << y;
+        EXPECT_EQ(pixel[1], inside ? 100 + x : 0) << width << ": " << x << "," << y;
+        EXPECT_EQ(pixel[2], inside ? 200 + x : 0) << width << ": " << x << "," << y;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace flagsim::render
