@@ -61,27 +61,26 @@ class BlockShader {
         base_{material.colour[0], material.colour[1], material.colour[2]},
         pattern_(pattern) {}
 
-  /// The colours at fx[i] pixels from the box's first column of the row `at` is along, stored
-  /// to rgbx[i] where in_front[i]. One loop over the lanes, so that the compiler keeps each
-  /// step's values in vector registers.
-  void Shade(const float at[Planes::kCount], const float fx[kSpanLanes], const int32_t in_front[kSpanLanes],
-             uint32_t rgbx[kSpanLanes]) const {
+  /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
+  /// in that column. One loop over the lanes, so that each step's values stay in vector
+  /// registers.
+  template <class At>
+  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes]) const {
     const float* step = planes_.dx;
 #pragma omp simd
     for (int i = 0; i < kSpanLanes; ++i) {
-      const float w = 1.0f / (at[Planes::kInverseW] + step[Planes::kInverseW] * fx[i]);
+      const float w = 1.0f / (at(Planes::kInverseW, i) + step[Planes::kInverseW] * fx[i]);
       float c[kChannels];
       for (int k = 0; k < kChannels; ++k) {
-        c[k] = (at[Planes::kChannel + k] + step[Planes::kChannel + k] * fx[i]) * w;
+        c[k] = (at(Planes::kChannel + k, i) + step[Planes::kChannel + k] * fx[i]) * w;
       }
       float base[3] = {base_[0], base_[1], base_[2]};
       if constexpr (kPatterned) {
         const uint32_t texel = pattern_.texels[TexelIndex(c[6], c[7])];
         for (int j = 0; j < 3; ++j) base[j] *= float(texel >> 8 * j & 0xff) * (1.0f / 255);
       }
-      const uint32_t colour = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
-                                       ToByte(base[2] * c[2] + c[5]));
-      rgbx[i] = in_front[i] ? colour : rgbx[i];
+      colour[i] = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
+                           ToByte(base[2] * c[2] + c[5]));
     }
   }
 
@@ -121,9 +120,83 @@ void FillSpan(const BlockShader<kPatterned>& shader, const Planes& planes, const
       in_front[i] = nearer;
       any |= nearer;
     }
-    if (any) shader.Shade(at, fx, in_front, rgbx);
+    if (!any) continue;
+    uint32_t colour[kSpanLanes];
+    shader.Shade([at](int k, int) { return at[k]; }, fx, colour);
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) rgbx[i] = in_front[i] ? colour[i] : rgbx[i];
   }
 }
+
+/// A narrow triangle's pixels, kSpanLanes at a time whatever their rows, so that a triangle a
+/// few pixels across takes a block or two rather than a block a row. Each lane holds its
+/// pixel's place in the tile and its distance from the box's first column and row; plane k on
+/// the lane's row is origin + dy * fy, as along a row. The depth test and the stores go pixel
+/// by pixel; no pixel is in a block twice.
+template <bool kPatterned>
+class PixelBlocks {
+ public:
+  PixelBlocks(const BlockShader<kPatterned>& shader, const Planes& planes, const TriangleSetup& t,
+              const TileTarget& target)
+      : shader_(shader), planes_(planes), t_(t), target_(target) {}
+
+  /// Pixel (x, y) of the tile into the block, which is shaded when full.
+  void Add(int x, int y) {
+    offset_[count_] = int32_t(size_t(y - target_.rect.y0) * target_.stride + size_t(x - target_.rect.x0));
+    fx_[count_] = float(x - t_.min_x);
+    fy_[count_] = float(y - t_.min_y);
+    if (++count_ == kSpanLanes) Flush();
+  }
+
+  /// Shades the pixels added since the last full block; lanes past them repeat the last one
+  /// and are masked off.
+  void Flush() {
+    const int count = count_;
+    if (count == 0) return;
+    count_ = 0;
+    for (int i = count; i < kSpanLanes; ++i) {
+      offset_[i] = offset_[count - 1];
+      fx_[i] = fx_[count - 1];
+      fy_[i] = fy_[count - 1];
+    }
+    float fx[kSpanLanes], fy[kSpanLanes], there[kSpanLanes];
+    for (int i = 0; i < kSpanLanes; ++i) {
+      fx[i] = fx_[i];
+      fy[i] = fy_[i];
+      there[i] = target_.depth[offset_[i]];
+    }
+    const float* origin = planes_.origin;
+    const float* dy = planes_.dy;
+    const auto at = [origin, dy, &fy](int k, int i) { return origin[k] + dy[k] * fy[i]; };
+    const float z_step = planes_.dx[Planes::kDepth];
+    float here[kSpanLanes];
+    int32_t in_front[kSpanLanes];
+    int any = 0;
+#pragma omp simd reduction(| : any)
+    for (int i = 0; i < kSpanLanes; ++i) {
+      here[i] = at(Planes::kDepth, i) + z_step * fx[i];
+      in_front[i] = i < count && here[i] < there[i];
+      any |= in_front[i];
+    }
+    if (!any) return;
+    uint32_t colour[kSpanLanes];
+    shader_.Shade(at, fx, colour);
+    for (int i = 0; i < count; ++i) {
+      if (!in_front[i]) continue;
+      target_.depth[offset_[i]] = here[i];
+      target_.rgbx[offset_[i]] = colour[i];
+    }
+  }
+
+ private:
+  const BlockShader<kPatterned>& shader_;
+  const Planes& planes_;
+  const TriangleSetup& t_;
+  const TileTarget& target_;
+  int count_ = 0;
+  int32_t offset_[kSpanLanes];  ///< from the tile's first pixel, in both its colour and depth
+  float fx_[kSpanLanes], fy_[kSpanLanes];
+};
 
 /// n RGBX words => n RGB pixels. With AVX2, 8 pixels at a time: in each 16-byte half the
 /// R, G, B bytes of its 4 pixels go to the front, then the two 12-byte runs side by side. All
@@ -300,21 +373,30 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
       FillRows(target, y_first, y_last, RowSpans(t, y_first), fill_span);
     }
   };
+  // Narrow triangles' pixels in blocks of any rows; the others' a row at a time.
+  const auto fill = [&](const auto& shader) {
+    if (in_window) {
+      PixelBlocks blocks(shader, planes, t, target);
+      FillRows(target, y_first, y_last, LaneSpans(t, x_first, x_last, y_first),
+               [&](int y, int first, int last) {
+                 for (int x = first; x <= last; ++x) blocks.Add(x, y);
+               });
+      blocks.Flush();
+    } else {
+      fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
+        FillSpan(shader, planes, at, fx0, n, depth, rgbx);
+      });
+    }
+  };
   const Material& material = context.scene->materials[t.material];
   if (context.mode == ShadingMode::kPhong) {
     fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
       FillSpanPhong(t, context, planes, at, fx0, n, depth, rgbx);
     });
   } else if (material.patterned) {
-    const BlockShader<true> shader(planes, material, *context.pattern);
-    fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
-      FillSpan(shader, planes, at, fx0, n, depth, rgbx);
-    });
+    fill(BlockShader<true>(planes, material, *context.pattern));
   } else {
-    const BlockShader<false> shader(planes, material, *context.pattern);
-    fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
-      FillSpan(shader, planes, at, fx0, n, depth, rgbx);
-    });
+    fill(BlockShader<false>(planes, material, *context.pattern));
   }
 }
 
