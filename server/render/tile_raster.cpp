@@ -140,12 +140,16 @@ class PixelBlocks {
               const TileTarget& target)
       : shader_(shader), planes_(planes), t_(t), target_(target) {}
 
-  /// Pixel (x, y) of the tile into the block, which is shaded when full.
-  void Add(int x, int y) {
-    offset_[count_] = int32_t(size_t(y - target_.rect.y0) * target_.stride + size_t(x - target_.rect.x0));
-    fx_[count_] = float(x - t_.min_x);
-    fy_[count_] = float(y - t_.min_y);
-    if (++count_ == kSpanLanes) Flush();
+  /// Pixels first .. last of row y into the block, which is shaded whenever it is full.
+  void AddSpan(int y, int first, int last) {
+    const int32_t row = int32_t(size_t(y - target_.rect.y0) * target_.stride) - target_.rect.x0;
+    const int32_t row_from_box = y - t_.min_y;
+    for (int x = first; x <= last; ++x) {
+      offset_[count_] = row + x;
+      column_[count_] = x - t_.min_x;
+      row_[count_] = row_from_box;
+      if (++count_ == kSpanLanes) Flush();
+    }
   }
 
   /// Shades the pixels added since the last full block; lanes past them repeat the last one
@@ -156,13 +160,13 @@ class PixelBlocks {
     count_ = 0;
     for (int i = count; i < kSpanLanes; ++i) {
       offset_[i] = offset_[count - 1];
-      fx_[i] = fx_[count - 1];
-      fy_[i] = fy_[count - 1];
+      column_[i] = column_[count - 1];
+      row_[i] = row_[count - 1];
     }
     float fx[kSpanLanes], fy[kSpanLanes], there[kSpanLanes];
     for (int i = 0; i < kSpanLanes; ++i) {
-      fx[i] = fx_[i];
-      fy[i] = fy_[i];
+      fx[i] = float(column_[i]);
+      fy[i] = float(row_[i]);
       there[i] = target_.depth[offset_[i]];
     }
     const float* origin = planes_.origin;
@@ -195,7 +199,8 @@ class PixelBlocks {
   const TileTarget& target_;
   int count_ = 0;
   int32_t offset_[kSpanLanes];  ///< from the tile's first pixel, in both its colour and depth
-  float fx_[kSpanLanes], fy_[kSpanLanes];
+  int32_t column_[kSpanLanes];  ///< from the box's first column
+  int32_t row_[kSpanLanes];     ///< from the box's first row
 };
 
 /// n RGBX words => n RGB pixels. With AVX2, 8 pixels at a time: in each 16-byte half the
@@ -378,9 +383,7 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
     if (in_window) {
       PixelBlocks blocks(shader, planes, t, target);
       FillRows(target, y_first, y_last, LaneSpans(t, x_first, x_last, y_first),
-               [&](int y, int first, int last) {
-                 for (int x = first; x <= last; ++x) blocks.Add(x, y);
-               });
+               [&](int y, int first, int last) { blocks.AddSpan(y, first, last); });
       blocks.Flush();
     } else {
       fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
