@@ -68,7 +68,28 @@ void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, co
   out->push_back(setup);
 }
 
+/// Calls visit(tile) for each tile (tiles_x across, tile_size px square) that the pixel box
+/// [x0, x1] x [y0, y1], clamped to the width x height image, touches.
+template <class Visit>
+void ForTilesOfBox(int x0, int y0, int x1, int y1, int width, int height, int tile_size, int tiles_x,
+                   Visit visit) {
+  x0 = std::max(x0, 0);
+  y0 = std::max(y0, 0);
+  x1 = std::min(x1, width - 1);
+  y1 = std::min(y1, height - 1);
+  if (x0 > x1 || y0 > y1) return;
+  for (int ty = y0 / tile_size; ty <= y1 / tile_size; ++ty) {
+    for (int tx = x0 / tile_size; tx <= x1 / tile_size; ++tx) visit(ty * tiles_x + tx);
+  }
+}
+
 }  // namespace
+
+size_t Renderer::triangles_drawn() const {
+  size_t count = 0;
+  for (const Chunk& chunk : chunks_) count += chunk.setups.size();
+  return count;
+}
 
 void Renderer::Render(const RenderScene& scene, const Camera& camera, const RenderOptions& options_in,
                       Framebuffer* framebuffer) {
@@ -79,15 +100,17 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   }
   eye_ = camera.EyeInWorld().cast<float>();
   const Eigen::Matrix4f clip_from_world = (camera.Projection() * camera.View()).cast<float>();
+  tiles_x_ = (camera.width + options.tile_size - 1) / options.tile_size;
+  tiles_y_ = (camera.height + options.tile_size - 1) / options.tile_size;
   VertexStage(scene, clip_from_world, options.mode, options.threads);
   if (options.mode == ShadingMode::kWireframe) {
-    setups_.clear();
-    LineStage(scene, camera.width, camera.height);
+    chunks_.clear();
+    LineStage(scene, camera.width, camera.height, options.tile_size);
   } else {
     lines_.clear();
-    PrimitiveStage(scene, options.mode, camera.width, camera.height, options.threads);
+    line_bins_.assign(size_t(tiles_x_) * tiles_y_, {});
+    PrimitiveStage(scene, options.mode, camera.width, camera.height, options.tile_size, options.threads);
   }
-  BinStage(camera.width, camera.height, options.tile_size);
   pattern_.Assign(scene.pattern);
   SkyRows(scene, camera.height, &sky_rows_);
   ShadeContext context;
@@ -134,9 +157,9 @@ void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip
   }
 }
 
-// Triangles in fixed chunks (the same chunks at any thread count), concatenated in order.
+// Triangles in fixed chunks (the same chunks at any thread count), each binned to the tiles.
 void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height,
-                              int threads) {
+                              int tile_size, int threads) {
   struct Work {
     int mesh, first, end;
   };
@@ -152,7 +175,7 @@ void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int wi
   for (int w = 0; w < items; ++w) {
     const Mesh& mesh = scene.meshes[work[w].mesh];
     const std::vector<ClipVertex>& vertices = vertices_[work[w].mesh];
-    std::vector<TriangleSetup>& out = chunks_[w];
+    std::vector<TriangleSetup>& out = chunks_[w].setups;
     out.clear();
     std::vector<ClipVertex> clipped;
     for (int t = work[w].first; t < work[w].end; ++t) {
@@ -174,13 +197,22 @@ void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int wi
           break;
       }
     }
+    BinChunk(width, height, tile_size, &chunks_[w]);
   }
-  setups_.clear();
-  for (const auto& chunk : chunks_) setups_.insert(setups_.end(), chunk.begin(), chunk.end());
 }
 
-// Mesh edges, clipped and projected to pixel endpoints, coloured by their material.
-void Renderer::LineStage(const RenderScene& scene, int width, int height) {
+void Renderer::BinChunk(int width, int height, int tile_size, Chunk* chunk) const {
+  chunk->bins.resize(size_t(tiles_x_) * tiles_y_);
+  for (std::vector<uint32_t>& bin : chunk->bins) bin.clear();
+  for (uint32_t i = 0; i < chunk->setups.size(); ++i) {
+    const TriangleSetup& t = chunk->setups[i];
+    ForTilesOfBox(t.min_x, t.min_y, t.max_x, t.max_y, width, height, tile_size, tiles_x_,
+                  [&](int tile) { chunk->bins[tile].push_back(i); });
+  }
+}
+
+// Mesh edges, clipped and projected to pixel endpoints, coloured by their material, and binned.
+void Renderer::LineStage(const RenderScene& scene, int width, int height, int tile_size) {
   lines_.clear();
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
@@ -206,36 +238,11 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height) {
       lines_.push_back(line);
     }
   }
-}
-
-void Renderer::BinStage(int width, int height, int tile_size) {
-  tiles_x_ = (width + tile_size - 1) / tile_size;
-  tiles_y_ = (height + tile_size - 1) / tile_size;
-  const size_t tiles = size_t(tiles_x_) * tiles_y_;
-  triangle_bins_.resize(tiles);
-  line_bins_.resize(tiles);
-  for (auto& bin : triangle_bins_) bin.clear();
-  for (auto& bin : line_bins_) bin.clear();
-  const auto bin_box = [&](int x0, int y0, int x1, int y1, uint32_t index,
-                           std::vector<std::vector<uint32_t>>* bins) {
-    x0 = std::max(x0, 0);
-    y0 = std::max(y0, 0);
-    x1 = std::min(x1, width - 1);
-    y1 = std::min(y1, height - 1);
-    for (int ty = y0 / tile_size; ty <= y1 / tile_size && y0 <= y1; ++ty) {
-      for (int tx = x0 / tile_size; tx <= x1 / tile_size && x0 <= x1; ++tx) {
-        (*bins)[size_t(ty) * tiles_x_ + tx].push_back(index);
-      }
-    }
-  };
-  for (uint32_t i = 0; i < setups_.size(); ++i) {
-    const TriangleSetup& t = setups_[i];
-    bin_box(t.min_x, t.min_y, t.max_x, t.max_y, i, &triangle_bins_);
-  }
+  line_bins_.assign(size_t(tiles_x_) * tiles_y_, {});
   for (uint32_t i = 0; i < lines_.size(); ++i) {
     const LineSetup& l = lines_[i];
-    bin_box(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1), i,
-            &line_bins_);
+    ForTilesOfBox(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1),
+                  width, height, tile_size, tiles_x_, [&](int tile) { line_bins_[tile].push_back(i); });
   }
 }
 
@@ -254,7 +261,9 @@ void Renderer::TileStage(const ShadeContext& context, const RenderOptions& optio
       rect.y1 = std::min(rect.y0 + size, framebuffer->height);
       const TileTarget target = buffer.Target(rect);
       ClearTile(sky_rows_.data(), target);
-      for (const uint32_t i : triangle_bins_[index]) RasterizeTriangle(setups_[i], context, target);
+      for (const Chunk& chunk : chunks_) {
+        for (const uint32_t i : chunk.bins[index]) RasterizeTriangle(chunk.setups[i], context, target);
+      }
       for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
       CopyOut(target, options.keep_depth, framebuffer);
     }

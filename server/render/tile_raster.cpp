@@ -308,6 +308,8 @@ TileTarget TileBuffer::Target(const TileRect& rect) {
 }
 
 void RgbxTexture::Assign(const Texture& texture) {
+  if (texture.width == width && texture.height == height && texture.rgb == source) return;
+  source = texture.rgb;
   width = texture.width;
   height = texture.height;
   texels.resize(size_t(width) * height);

@@ -64,7 +64,9 @@ void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer
 struct RgbxTexture {
   int width = 0, height = 0;
   std::vector<uint32_t> texels;  ///< row-major, top row first, as Texture::rgb
+  std::vector<uint8_t> source;   ///< the RGB bytes they are from
 
+  /// The texels of `texture`; nothing to do if they are from the same bytes already.
   void Assign(const Texture& texture);
 };
 
