@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <vector>
 
 #include "tile_drawing.hpp"
@@ -44,6 +46,54 @@ TEST(TileRaster, GouraudColoursAreTheInterpolatedLight) {
     EXPECT_NEAR(framebuffer.Pixel(x, y)[0], expected, 1) << x << "," << y;
   }
   EXPECT_EQ(framebuffer.Pixel(31, 31)[0], 0);  // outside: untouched
+}
+
+TEST(TileRaster, EveryCoveredPixelGetsItsPlanesValueInAnyTiling) {
+  // Small (walked in a window, shaded in blocks of any rows) and large triangles, perspective
+  // correct: each covered pixel shows D = (D/w plane) / (1/w plane), the planes evaluated
+  // along the pixel's row first, and the rest stays black.
+  const RenderScene scene = White();
+  ShadeContext context;
+  context.scene = &scene;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> corner(-4.0f, 36.0f), offset(-7.0f, 7.0f), unit(0.0f, 1.0f);
+  int narrow = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const float size = trial % 2 ? 1.0f : 4.0f;
+    ScreenVertex v[3];
+    const float x = corner(random), y = corner(random);
+    for (ScreenVertex& vertex : v) {
+      vertex = At(x + size * offset(random), y + size * offset(random), unit(random), unit(random));
+      vertex.inverse_w = 0.5f + unit(random);
+    }
+    TriangleSetup t;
+    if (!SetupTriangle(v[0], v[1], v[2], 32, 32, &t)) continue;
+    narrow += t.narrow;
+    for (const int tile : {32, 8, 5}) {
+      Framebuffer framebuffer;
+      framebuffer.Resize(32, 32);
+      for (int y0 = 0; y0 < 32; y0 += tile) {
+        for (int x0 = 0; x0 < 32; x0 += tile) {
+          DrawInTile(&framebuffer, TileRect{x0, y0, std::min(x0 + tile, 32), std::min(y0 + tile, 32)},
+                     [&](const TileTarget& target) { RasterizeTriangle(t, context, target); });
+        }
+      }
+      for (int y = 0; y < 32; ++y) {
+        int first = 0, last = -1;
+        if (y < t.min_y || y > t.max_y || !RowSpan(t, y, &first, &last)) last = -1;
+        const float fy = float(y - t.min_y);
+        for (int px = 0; px < 32; ++px) {
+          const float fx = float(px - t.min_x);
+          const auto value = [&](const Plane& p) { return (p.origin + p.dy * fy) + p.dx * fx; };
+          const float diffuse = value(t.channels[0]) * (1.0f / value(t.inverse_w));
+          const int expected = std::max(int(std::min(diffuse * 255.0f + 0.5f, 255.0f)), 0);
+          ASSERT_EQ(framebuffer.Pixel(px, y)[0], px >= first && px <= last ? expected : 0)
+              << "trial " << trial << " tile " << tile << " at " << px << "," << y;
+        }
+      }
+    }
+  }
+  EXPECT_GT(narrow, 20);
 }
 
 TEST(TileRaster, TheNearerTriangleWinsInEitherOrder) {
