@@ -340,16 +340,19 @@ void SkyRows(const RenderScene& scene, int height, std::vector<uint32_t>* rows) 
 }
 
 void ClearTile(const uint32_t* sky_rows, const TileTarget& target) {
+  // Whole blocks of kSpanLanes pixels, the last reaching into the row's room past x1.
   const TileRect& tile = target.rect;
   const int pixels = tile.x1 - tile.x0;
   for (int y = tile.y0; y < tile.y1; ++y) {
     const uint32_t colour = sky_rows[y];
     uint32_t* rgbx = target.Rgbx(tile.x0, y);
     float* depth = target.Depth(tile.x0, y);
+    for (int start = 0; start < pixels; start += kSpanLanes) {
 #pragma omp simd
-    for (int i = 0; i < pixels; ++i) {
-      rgbx[i] = colour;
-      depth[i] = 1.0f;
+      for (int i = start; i < start + kSpanLanes; ++i) {
+        rgbx[i] = colour;
+        depth[i] = 1.0f;
+      }
     }
   }
 }

@@ -170,27 +170,6 @@ LaneSpans::LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y) : x0
   }
 }
 
-bool LaneSpans::Span(int* first, int* last) const {
-  // Inside all three edges and not past x_last: no sign bit in the or. Covered lanes are contiguous.
-  int low = kWidth, high = -1;
-#pragma omp simd reduction(min : low) reduction(max : high)
-  for (int i = 0; i < kWidth; ++i) {
-    const bool covered = (inside_[0][i] | inside_[1][i] | inside_[2][i] | past_end_[i]) >= 0;
-    low = std::min(low, covered ? i : kWidth);
-    high = std::max(high, covered ? i : -1);
-  }
-  *first = x0_ + low;
-  *last = x0_ + high;
-  return low <= high;
-}
-
-void LaneSpans::NextRow() {
-  for (int k = 0; k < 3; ++k) {
-#pragma omp simd
-    for (int i = 0; i < kWidth; ++i) inside_[k][i] += growth_[k];
-  }
-}
-
 namespace {
 
 /// Edge i's E + bias at the centre of pixel (x, y), in subpixels squared: >= 0 inside.

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 
 namespace flagsim::render {
@@ -101,5 +102,27 @@ class LaneSpans {
   int32_t past_end_[kWidth];   ///< -1 for lanes past x_last, else 0
   int x0_;                     ///< the window's first column
 };
+
+// Inline: a narrow triangle's rows are short, and a call would cost as much as either.
+inline bool LaneSpans::Span(int* first, int* last) const {
+  // Inside all three edges and not past x_last: no sign bit in the or. Covered lanes are contiguous.
+  int low = kWidth, high = -1;
+#pragma omp simd reduction(min : low) reduction(max : high)
+  for (int i = 0; i < kWidth; ++i) {
+    const bool covered = (inside_[0][i] | inside_[1][i] | inside_[2][i] | past_end_[i]) >= 0;
+    low = std::min(low, covered ? i : kWidth);
+    high = std::max(high, covered ? i : -1);
+  }
+  *first = x0_ + low;
+  *last = x0_ + high;
+  return low <= high;
+}
+
+inline void LaneSpans::NextRow() {
+  for (int k = 0; k < 3; ++k) {
+#pragma omp simd
+    for (int i = 0; i < kWidth; ++i) inside_[k][i] += growth_[k];
+  }
+}
 
 }  // namespace flagsim::render
