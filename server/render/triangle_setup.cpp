@@ -8,6 +8,14 @@ namespace {
 
 int64_t Snap(float pixels) { return static_cast<int64_t>(std::lround(double(pixels) * kSubpixels)); }
 
+/// Edge i's E + bias at the centre of pixel (x, y), in subpixels squared, E(P) = dx (Py - y_i) -
+/// dy (Px - x_i): >= 0 inside.
+int64_t EdgeAt(const TriangleSetup& setup, int i, int x, int y) {
+  const int64_t half = kSubpixels / 2;
+  return setup.edge_dx[i] * (int64_t(y) * kSubpixels + half - setup.edge_y[i]) -
+         setup.edge_dy[i] * (int64_t(x) * kSubpixels + half - setup.edge_x[i]) + setup.edge_bias[i];
+}
+
 /// floor(a / b) for b > 0.
 int64_t FloorDiv(int64_t a, int64_t b) { return a / b - ((a % b != 0) && (a < 0)); }
 
@@ -149,18 +157,6 @@ void RowSpans::NextRow() {
   }
 }
 
-namespace {
-
-/// Edge i's E + bias at the centre of pixel (x, y), in subpixels squared: E(P) = dx (Py - y_i) - dy (Px -
-/// x_i).
-int64_t EdgeAt(const TriangleSetup& setup, int i, int64_t x, int64_t y) {
-  const int64_t half = kSubpixels / 2;
-  return setup.edge_dx[i] * (y * kSubpixels + half - setup.edge_y[i]) -
-         setup.edge_dy[i] * (x * kSubpixels + half - setup.edge_x[i]) + setup.edge_bias[i];
-}
-
-}  // namespace
-
 LaneSpans::LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y) : x0_(x0) {
   for (int i = 0; i < kWidth; ++i) past_end_[i] = x0 + i > x_last ? -1 : 0;
   for (int k = 0; k < 3; ++k) {
@@ -169,17 +165,6 @@ LaneSpans::LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y) : x0
     for (int i = 0; i < kWidth; ++i) inside_[k][i] = int32_t(at_x0 + per_pixel * i);
   }
 }
-
-namespace {
-
-/// Edge i's E + bias at the centre of pixel (x, y), in subpixels squared: >= 0 inside.
-int64_t EdgeAt(const TriangleSetup& setup, int i, int x, int y) {
-  const int64_t half = kSubpixels / 2;
-  return setup.edge_dx[i] * (int64_t(y) * kSubpixels + half - setup.edge_y[i]) -
-         setup.edge_dy[i] * (int64_t(x) * kSubpixels + half - setup.edge_x[i]) + setup.edge_bias[i];
-}
-
-}  // namespace
 
 BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1) {
   bool all = true;
