@@ -70,10 +70,10 @@ bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVer
 
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
-    setup->edge_x[i] = X[i];
-    setup->edge_y[i] = Y[i];
-    setup->edge_dx[i] = X[j] - X[i];
-    setup->edge_dy[i] = Y[j] - Y[i];
+    setup->edge_x[i] = int32_t(X[i]);
+    setup->edge_y[i] = int32_t(Y[i]);
+    setup->edge_dx[i] = int32_t(X[j] - X[i]);
+    setup->edge_dy[i] = int32_t(Y[j] - Y[i]);
     // With y down and positive area the vertices run clockwise on screen: a top edge is
     // horizontal going right, a left edge goes up.
     const bool top = setup->edge_dy[i] == 0 && setup->edge_dx[i] > 0;
@@ -161,7 +161,7 @@ LaneSpans::LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y) : x0
   for (int i = 0; i < kWidth; ++i) past_end_[i] = x0 + i > x_last ? -1 : 0;
   for (int k = 0; k < 3; ++k) {
     growth_[k] = int32_t(setup.edge_dx[k] * kSubpixels);
-    const int64_t at_x0 = EdgeAt(setup, k, x0, y), per_pixel = -setup.edge_dy[k] * kSubpixels;
+    const int64_t at_x0 = EdgeAt(setup, k, x0, y), per_pixel = -int64_t(setup.edge_dy[k]) * kSubpixels;
     for (int i = 0; i < kWidth; ++i) inside_[k][i] = int32_t(at_x0 + per_pixel * i);
   }
 }

@@ -34,9 +34,10 @@ struct ScreenVertex {
 
 struct TriangleSetup {
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  ///< px, inclusive, inside the image
-  // Edge i runs from vertex i to vertex i + 1, in subpixels: E(P) = dx (Py - y) - dy (Px - x).
-  int64_t edge_x[3] = {}, edge_y[3] = {}, edge_dx[3] = {}, edge_dy[3] = {};
-  int64_t edge_bias[3] = {};       ///< 0 for top and left edges, -1 for the others
+  // Edge i runs from vertex i to vertex i + 1, in subpixels: E(P) = dx (Py - y) - dy (Px - x),
+  // worked out in int64. (Clipped to the guard band, vertices are within a few image widths.)
+  int32_t edge_x[3] = {}, edge_y[3] = {}, edge_dx[3] = {}, edge_dy[3] = {};
+  int32_t edge_bias[3] = {};       ///< 0 for top and left edges, -1 for the others
   Plane depth;                     ///< window depth, linear in the image
   Plane inverse_w;                 ///< 1 / w
   Plane channels[kPlaneChannels];  ///< channel / w: divide by inverse_w for the channel
