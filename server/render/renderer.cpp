@@ -102,13 +102,14 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   const Eigen::Matrix4f clip_from_world = (camera.Projection() * camera.View()).cast<float>();
   tiles_x_ = (camera.width + options.tile_size - 1) / options.tile_size;
   tiles_y_ = (camera.height + options.tile_size - 1) / options.tile_size;
+  line_bins_.resize(size_t(tiles_x_) * tiles_y_);
+  for (std::vector<uint32_t>& bin : line_bins_) bin.clear();
   VertexStage(scene, clip_from_world, options.mode, options.threads);
   if (options.mode == ShadingMode::kWireframe) {
     chunks_.clear();
     LineStage(scene, camera.width, camera.height, options.tile_size);
   } else {
     lines_.clear();
-    line_bins_.assign(size_t(tiles_x_) * tiles_y_, {});
     PrimitiveStage(scene, options.mode, camera.width, camera.height, options.tile_size, options.threads);
   }
   pattern_.Assign(scene.pattern);
@@ -238,7 +239,6 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height, int ti
       lines_.push_back(line);
     }
   }
-  line_bins_.assign(size_t(tiles_x_) * tiles_y_, {});
   for (uint32_t i = 0; i < lines_.size(); ++i) {
     const LineSetup& l = lines_[i];
     ForTilesOfBox(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1),
