@@ -71,12 +71,14 @@ class BlockShader {
     for (int i = 0; i < kSpanLanes; ++i) {
       const float w = 1.0f / (at(Planes::kInverseW, i) + step[Planes::kInverseW] * fx[i]);
       float c[kChannels];
+#pragma GCC unroll 8
       for (int k = 0; k < kChannels; ++k) {
         c[k] = (at(Planes::kChannel + k, i) + step[Planes::kChannel + k] * fx[i]) * w;
       }
       float base[3] = {base_[0], base_[1], base_[2]};
       if constexpr (kPatterned) {
         const uint32_t texel = pattern_.texels[TexelIndex(c[6], c[7])];
+#pragma GCC unroll 3
         for (int j = 0; j < 3; ++j) base[j] *= float(texel >> 8 * j & 0xff) * (1.0f / 255);
       }
       colour[i] = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
