@@ -63,7 +63,7 @@ class BlockShader {
 
   /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
   /// in that column. One loop over the lanes, so that each step's values stay in vector
-  /// registers.
+  /// registers; the loops inside it are unrolled, which vectorising it needs.
   template <class At>
   void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes]) const {
     const float* step = planes_.dx;
