@@ -56,7 +56,8 @@ class BlockShader {
  public:
   static constexpr int kChannels = kPatterned ? 8 : 6;
 
-  BlockShader(const Planes& planes, const Material& material, const RgbxTexture& pattern)
+  /// `pattern` is read only when kPatterned.
+  BlockShader(const Planes& planes, const Material& material, const RgbxTexture* pattern)
       : planes_(planes),
         base_{material.colour[0], material.colour[1], material.colour[2]},
         pattern_(pattern) {}
@@ -77,7 +78,7 @@ class BlockShader {
       }
       float base[3] = {base_[0], base_[1], base_[2]};
       if constexpr (kPatterned) {
-        const uint32_t texel = pattern_.texels[TexelIndex(c[6], c[7])];
+        const uint32_t texel = pattern_->texels[TexelIndex(c[6], c[7])];
 #pragma GCC unroll 3
         for (int j = 0; j < 3; ++j) base[j] *= float(texel >> 8 * j & 0xff) * (1.0f / 255);
       }
@@ -89,7 +90,7 @@ class BlockShader {
  private:
   /// The texel at (u, v), picked as Texture::Sample does.
   int32_t TexelIndex(float u, float v) const {
-    const int width = pattern_.width, height = pattern_.height;
+    const int width = pattern_->width, height = pattern_->height;
     int x = static_cast<int>(u * width), y = static_cast<int>(v * height);
     x = x < 0 ? 0 : x >= width ? width - 1 : x;
     y = y < 0 ? 0 : y >= height ? height - 1 : y;
@@ -98,7 +99,7 @@ class BlockShader {
 
   const Planes& planes_;
   float base_[3];
-  const RgbxTexture& pattern_;
+  const RgbxTexture* pattern_;
 };
 
 /// The n pixels of a row from fx0 pixels past the box's first column, kSpanLanes at a time:
@@ -404,9 +405,9 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
       FillSpanPhong(t, context, planes, at, fx0, n, depth, rgbx);
     });
   } else if (material.patterned) {
-    fill(BlockShader<true>(planes, material, *context.pattern));
+    fill(BlockShader<true>(planes, material, context.pattern));
   } else {
-    fill(BlockShader<false>(planes, material, *context.pattern));
+    fill(BlockShader<false>(planes, material, context.pattern));
   }
 }
 
