@@ -210,8 +210,8 @@ TEST(CoverOfBox, NoneAndAllAgreeWithTheRowSpans) {
     }
     std::uniform_int_distribution<int> x(setup.min_x, setup.max_x), y(setup.min_y, setup.max_y);
     for (int box = 0; box < 20; ++box) {
-      const auto [x0, x1] = std::minmax(x(random), x(random));
-      const auto [y0, y1] = std::minmax(y(random), y(random));
+      const int xa = x(random), xb = x(random), ya = y(random), yb = y(random);
+      const int x0 = std::min(xa, xb), x1 = std::max(xa, xb), y0 = std::min(ya, yb), y1 = std::max(ya, yb);
       int covered = 0;
       for (int row = y0; row <= y1; ++row) {
         int first = 0, last = 0;
