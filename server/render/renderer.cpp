@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 namespace flagsim::render {
 namespace {
@@ -69,7 +68,28 @@ void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, co
   out->push_back(setup);
 }
 
+/// Calls visit(tile) for each tile (tiles_x across, tile_size px square) that the pixel box
+/// [x0, x1] x [y0, y1], clamped to the width x height image, touches.
+template <class Visit>
+void ForTilesOfBox(int x0, int y0, int x1, int y1, int width, int height, int tile_size, int tiles_x,
+                   Visit visit) {
+  x0 = std::max(x0, 0);
+  y0 = std::max(y0, 0);
+  x1 = std::min(x1, width - 1);
+  y1 = std::min(y1, height - 1);
+  if (x0 > x1 || y0 > y1) return;
+  for (int ty = y0 / tile_size; ty <= y1 / tile_size; ++ty) {
+    for (int tx = x0 / tile_size; tx <= x1 / tile_size; ++tx) visit(ty * tiles_x + tx);
+  }
+}
+
 }  // namespace
+
+size_t Renderer::triangles_drawn() const {
+  size_t count = 0;
+  for (const Chunk& chunk : chunks_) count += chunk.setups.size();
+  return count;
+}
 
 void Renderer::Render(const RenderScene& scene, const Camera& camera, const RenderOptions& options_in,
                       Framebuffer* framebuffer) {
@@ -80,17 +100,23 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   }
   eye_ = camera.EyeInWorld().cast<float>();
   const Eigen::Matrix4f clip_from_world = (camera.Projection() * camera.View()).cast<float>();
+  tiles_x_ = (camera.width + options.tile_size - 1) / options.tile_size;
+  tiles_y_ = (camera.height + options.tile_size - 1) / options.tile_size;
+  line_bins_.resize(size_t(tiles_x_) * tiles_y_);
+  for (std::vector<uint32_t>& bin : line_bins_) bin.clear();
   VertexStage(scene, clip_from_world, options.mode, options.threads);
   if (options.mode == ShadingMode::kWireframe) {
-    setups_.clear();
-    LineStage(scene, camera.width, camera.height);
+    chunks_.clear();
+    LineStage(scene, camera.width, camera.height, options.tile_size);
   } else {
     lines_.clear();
-    PrimitiveStage(scene, options.mode, camera.width, camera.height, options.threads);
+    PrimitiveStage(scene, options.mode, camera.width, camera.height, options.tile_size, options.threads);
   }
-  BinStage(camera.width, camera.height, options.tile_size);
+  pattern_.Assign(scene.pattern);
+  SkyRows(scene, camera.height, &sky_rows_);
   ShadeContext context;
   context.scene = &scene;
+  context.pattern = &pattern_;
   context.mode = options.mode;
   context.eye = eye_;
   TileStage(context, options, framebuffer);
@@ -132,9 +158,9 @@ void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip
   }
 }
 
-// Triangles in fixed chunks (the same chunks at any thread count), concatenated in order.
+// Triangles in fixed chunks (the same chunks at any thread count), each binned to the tiles.
 void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height,
-                              int threads) {
+                              int tile_size, int threads) {
   struct Work {
     int mesh, first, end;
   };
@@ -150,7 +176,7 @@ void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int wi
   for (int w = 0; w < items; ++w) {
     const Mesh& mesh = scene.meshes[work[w].mesh];
     const std::vector<ClipVertex>& vertices = vertices_[work[w].mesh];
-    std::vector<TriangleSetup>& out = chunks_[w];
+    std::vector<TriangleSetup>& out = chunks_[w].setups;
     out.clear();
     std::vector<ClipVertex> clipped;
     for (int t = work[w].first; t < work[w].end; ++t) {
@@ -172,13 +198,22 @@ void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int wi
           break;
       }
     }
+    BinChunk(width, height, tile_size, &chunks_[w]);
   }
-  setups_.clear();
-  for (const auto& chunk : chunks_) setups_.insert(setups_.end(), chunk.begin(), chunk.end());
 }
 
-// Mesh edges, clipped and projected to pixel endpoints, coloured by their material.
-void Renderer::LineStage(const RenderScene& scene, int width, int height) {
+void Renderer::BinChunk(int width, int height, int tile_size, Chunk* chunk) const {
+  chunk->bins.resize(size_t(tiles_x_) * tiles_y_);
+  for (std::vector<uint32_t>& bin : chunk->bins) bin.clear();
+  for (uint32_t i = 0; i < chunk->setups.size(); ++i) {
+    const TriangleSetup& t = chunk->setups[i];
+    ForTilesOfBox(t.min_x, t.min_y, t.max_x, t.max_y, width, height, tile_size, tiles_x_,
+                  [&](int tile) { chunk->bins[tile].push_back(i); });
+  }
+}
+
+// Mesh edges, clipped and projected to pixel endpoints, coloured by their material, and binned.
+void Renderer::LineStage(const RenderScene& scene, int width, int height, int tile_size) {
   lines_.clear();
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
@@ -204,36 +239,10 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height) {
       lines_.push_back(line);
     }
   }
-}
-
-void Renderer::BinStage(int width, int height, int tile_size) {
-  tiles_x_ = (width + tile_size - 1) / tile_size;
-  tiles_y_ = (height + tile_size - 1) / tile_size;
-  const size_t tiles = size_t(tiles_x_) * tiles_y_;
-  triangle_bins_.resize(tiles);
-  line_bins_.resize(tiles);
-  for (auto& bin : triangle_bins_) bin.clear();
-  for (auto& bin : line_bins_) bin.clear();
-  const auto bin_box = [&](int x0, int y0, int x1, int y1, uint32_t index,
-                           std::vector<std::vector<uint32_t>>* bins) {
-    x0 = std::max(x0, 0);
-    y0 = std::max(y0, 0);
-    x1 = std::min(x1, width - 1);
-    y1 = std::min(y1, height - 1);
-    for (int ty = y0 / tile_size; ty <= y1 / tile_size && y0 <= y1; ++ty) {
-      for (int tx = x0 / tile_size; tx <= x1 / tile_size && x0 <= x1; ++tx) {
-        (*bins)[size_t(ty) * tiles_x_ + tx].push_back(index);
-      }
-    }
-  };
-  for (uint32_t i = 0; i < setups_.size(); ++i) {
-    const TriangleSetup& t = setups_[i];
-    bin_box(t.min_x, t.min_y, t.max_x, t.max_y, i, &triangle_bins_);
-  }
   for (uint32_t i = 0; i < lines_.size(); ++i) {
     const LineSetup& l = lines_[i];
-    bin_box(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1), i,
-            &line_bins_);
+    ForTilesOfBox(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1),
+                  width, height, tile_size, tiles_x_, [&](int tile) { line_bins_[tile].push_back(i); });
   }
 }
 
@@ -242,33 +251,21 @@ void Renderer::TileStage(const ShadeContext& context, const RenderOptions& optio
   const int tiles = tiles_x_ * tiles_y_, size = options.tile_size;
 #pragma omp parallel num_threads(options.threads) if (options.threads > 1)
   {
-    std::vector<uint8_t> rgb(size_t(size) * size * 3);
-    std::vector<float> depth(size_t(size) * size);
+    TileBuffer buffer(size);
 #pragma omp for schedule(dynamic)
     for (int index = 0; index < tiles; ++index) {
-      TileTarget target;
-      target.rect.x0 = (index % tiles_x_) * size;
-      target.rect.y0 = (index / tiles_x_) * size;
-      target.rect.x1 = std::min(target.rect.x0 + size, framebuffer->width);
-      target.rect.y1 = std::min(target.rect.y0 + size, framebuffer->height);
-      target.image_height = framebuffer->height;
-      target.rgb = rgb.data();
-      target.rgb_stride = size_t(size) * 3;
-      target.depth = depth.data();
-      target.depth_stride = size_t(size);
-      ClearTile(*context.scene, target);
-      for (const uint32_t i : triangle_bins_[index]) RasterizeTriangle(setups_[i], context, target);
-      for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
-      // Out to the image: colour rows, and depth if asked for.
-      const int width = target.rect.x1 - target.rect.x0;
-      for (int y = target.rect.y0; y < target.rect.y1; ++y) {
-        std::memcpy(framebuffer->Pixel(target.rect.x0, y), target.Pixel(target.rect.x0, y),
-                    size_t(width) * 3);
-        if (options.keep_depth) {
-          std::memcpy(&framebuffer->depth[size_t(y) * framebuffer->width + target.rect.x0],
-                      target.Depth(target.rect.x0, y), size_t(width) * sizeof(float));
-        }
+      TileRect rect;
+      rect.x0 = (index % tiles_x_) * size;
+      rect.y0 = (index / tiles_x_) * size;
+      rect.x1 = std::min(rect.x0 + size, framebuffer->width);
+      rect.y1 = std::min(rect.y0 + size, framebuffer->height);
+      const TileTarget target = buffer.Target(rect);
+      ClearTile(sky_rows_.data(), target);
+      for (const Chunk& chunk : chunks_) {
+        for (const uint32_t i : chunk.bins[index]) RasterizeTriangle(chunk.setups[i], context, target);
       }
+      for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
+      CopyOut(target, options.keep_depth, framebuffer);
     }
   }
 }

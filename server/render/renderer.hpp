@@ -2,11 +2,12 @@
 //
 //   vertex stage     world -> clip space; per-vertex lighting (front and back) for Gouraud
 //   primitives       flat: per-face lighting; clip (near, far, guard band); project; facing:
-//                    cull or pick the back material; snap and set up (triangle_setup.hpp)
-//   binning          each triangle (or line) into the list of every tile its box touches,
-//                    in mesh and triangle order
+//                    cull or pick the back material; snap and set up (triangle_setup.hpp);
+//                    in fixed chunks of triangles, each binned on its own: for every tile, its
+//                    triangles whose box touches the tile, in order
+//   lines            wireframe: each line binned the same way
 //   tiles            in parallel, each in a small buffer of its own that stays in cache: sky,
-//                    the tile's triangles in order (tile_raster.hpp), then copied out
+//                    the tile's triangles chunk after chunk (tile_raster.hpp), then copied out
 //
 // Every stage's output is in a fixed order whatever the thread count, and each tile is drawn
 // by one thread, so the image is the same bit for bit at any number of threads.
@@ -39,24 +40,32 @@ class Renderer {
               Framebuffer* framebuffer);
 
   /// Triangles set up in the last frame (after culling and clipping), for statistics.
-  size_t triangles_drawn() const { return setups_.size(); }
+  size_t triangles_drawn() const;
 
  private:
   void VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip_from_world, ShadingMode mode,
                    int threads);
-  void PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height, int threads);
-  void LineStage(const RenderScene& scene, int width, int height);
-  void BinStage(int width, int height, int tile_size);
+  void PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height, int tile_size,
+                      int threads);
+  void LineStage(const RenderScene& scene, int width, int height, int tile_size);
   void TileStage(const ShadeContext& context, const RenderOptions& options, Framebuffer* framebuffer);
 
+  /// One primitive-stage work item's triangles, in order, and for each tile those whose box
+  /// touches it.
+  struct Chunk {
+    std::vector<TriangleSetup> setups;
+    std::vector<std::vector<uint32_t>> bins;  ///< per tile: indices into setups, in order
+  };
+  void BinChunk(int width, int height, int tile_size, Chunk* chunk) const;
+
   Eigen::Vector3f eye_;
-  std::vector<std::vector<ClipVertex>> vertices_;   ///< per mesh, per vertex
-  std::vector<std::vector<TriangleSetup>> chunks_;  ///< primitive stage output per chunk
-  std::vector<TriangleSetup> setups_;               ///< all triangles, in order
+  std::vector<std::vector<ClipVertex>> vertices_;  ///< per mesh, per vertex
+  std::vector<Chunk> chunks_;
   std::vector<LineSetup> lines_;
+  RgbxTexture pattern_;             ///< the scene's, for the tiles
+  std::vector<uint32_t> sky_rows_;  ///< the sky's colour on each row of the image
   int tiles_x_ = 0, tiles_y_ = 0;
-  std::vector<std::vector<uint32_t>> triangle_bins_;  ///< per tile: indices into setups_
-  std::vector<std::vector<uint32_t>> line_bins_;      ///< per tile: indices into lines_
+  std::vector<std::vector<uint32_t>> line_bins_;  ///< per tile: indices into lines_
 };
 
 }  // namespace flagsim::render

@@ -3,140 +3,255 @@
 #include <algorithm>
 #include <cstring>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 namespace flagsim::render {
 namespace {
 
 /// 0..1 => 0..255, rounded and clamped; branch-free so that the loops using it vectorise.
-uint8_t ToByte(float value) {
-  return static_cast<uint8_t>(std::min(std::max(value * 255.0f + 0.5f, 0.0f), 255.0f));
+/// Clamped above before the conversion to int and below after it, which is min(max(v, 0), 255)
+/// converted, in fewer vector instructions.
+uint32_t ToByte(float value) {
+  const int32_t truncated = static_cast<int32_t>(std::min(value * 255.0f + 0.5f, 255.0f));
+  return static_cast<uint32_t>(std::max(truncated, 0));
 }
 
-/// A plane's value along one row: at + step * (x - min_x).
-struct RowPlane {
-  float at, step;
-};
+/// A triangle's planes side by side: depth, 1 / w, the channels, then zeros up to whole
+/// vectors. A row's values of them all are then a few vector operations.
+struct Planes {
+  static constexpr int kDepth = 0, kInverseW = 1, kChannel = 2;
+  static constexpr int kCount = 16;
+  static_assert(kChannel + kPlaneChannels <= kCount);
 
-RowPlane AlongRow(const Plane& plane, float fy) { return RowPlane{plane.origin + plane.dy * fy, plane.dx}; }
+  explicit Planes(const TriangleSetup& t) {
+    const auto put = [this](int k, const Plane& plane) {
+      origin[k] = plane.origin;
+      dx[k] = plane.dx;
+      dy[k] = plane.dy;
+    };
+    put(kDepth, t.depth);
+    put(kInverseW, t.inverse_w);
+    for (int k = 0; k < kPlaneChannels; ++k) put(kChannel + k, t.channels[k]);
+  }
+
+  /// Every plane along row fy: at[k] + dx[k] * fx at fx pixels from the box's first column.
+  void AlongRow(float fy, float at[kCount]) const {
+#pragma omp simd
+    for (int k = 0; k < kCount; ++k) at[k] = origin[k] + dy[k] * fy;
+  }
+
+  alignas(32) float origin[kCount] = {};
+  alignas(32) float dx[kCount] = {};
+  alignas(32) float dy[kCount] = {};
+};
 
 /// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
 /// base the material's colour, times the pattern's texel at (u, v) (channels 6, 7) when
-/// `kPatterned`. Perspective-correct: each channel is (channel / w) / (1 / w).
+/// `kPatterned`. Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block
+/// of kSpanLanes pixels at once.
 template <bool kPatterned>
-struct SpanShader {
+class BlockShader {
+ public:
   static constexpr int kChannels = kPatterned ? 8 : 6;
 
-  SpanShader(const TriangleSetup& t, const Material& material, const Texture& texture, float fy)
-      : inverse_w(AlongRow(t.inverse_w, fy)),
-        base{material.colour[0], material.colour[1], material.colour[2]},
-        pattern(texture) {
-    for (int k = 0; k < kChannels; ++k) channel[k] = AlongRow(t.channels[k], fy);
-  }
+  /// `pattern` is read only when kPatterned.
+  BlockShader(const Planes& planes, const Material& material, const RgbxTexture* pattern)
+      : planes_(planes),
+        base_{material.colour[0], material.colour[1], material.colour[2]},
+        pattern_(pattern) {}
 
-  /// The colour at fx pixels from the box's first column, 0..1 (more under strong light).
-  void At(float fx, float* r, float* g, float* b) const {
-    const float w = 1.0f / (inverse_w.at + inverse_w.step * fx);
-    float c[kChannels];
-    for (int k = 0; k < kChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
-    float red = base[0], green = base[1], blue = base[2];
-    if constexpr (kPatterned) {
-      const uint8_t* texel = pattern.Sample(c[6], c[7]);
-      red *= texel[0] * (1.0f / 255);
-      green *= texel[1] * (1.0f / 255);
-      blue *= texel[2] * (1.0f / 255);
+  /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
+  /// in that column. One loop over the lanes, so that each step's values stay in vector
+  /// registers; the loops inside it are unrolled, which vectorising it needs.
+  template <class At>
+  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes]) const {
+    const float* step = planes_.dx;
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) {
+      const float w = 1.0f / (at(Planes::kInverseW, i) + step[Planes::kInverseW] * fx[i]);
+      float c[kChannels];
+#pragma GCC unroll 8
+      for (int k = 0; k < kChannels; ++k) {
+        c[k] = (at(Planes::kChannel + k, i) + step[Planes::kChannel + k] * fx[i]) * w;
+      }
+      float base[3] = {base_[0], base_[1], base_[2]};
+      if constexpr (kPatterned) {
+        const uint32_t texel = pattern_->texels[TexelIndex(c[6], c[7])];
+#pragma GCC unroll 3
+        for (int j = 0; j < 3; ++j) base[j] *= float(texel >> 8 * j & 0xff) * (1.0f / 255);
+      }
+      colour[i] = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
+                           ToByte(base[2] * c[2] + c[5]));
     }
-    *r = red * c[0] + c[3];
-    *g = green * c[1] + c[4];
-    *b = blue * c[2] + c[5];
   }
 
-  RowPlane inverse_w;
-  RowPlane channel[kChannels];
-  float base[3];
-  const Texture& pattern;
+ private:
+  /// The texel at (u, v), picked as Texture::Sample does.
+  int32_t TexelIndex(float u, float v) const {
+    const int width = pattern_->width, height = pattern_->height;
+    int x = static_cast<int>(u * width), y = static_cast<int>(v * height);
+    x = x < 0 ? 0 : x >= width ? width - 1 : x;
+    y = y < 0 ? 0 : y >= height ? height - 1 : y;
+    return y * width + x;
+  }
+
+  const Planes& planes_;
+  float base_[3];
+  const RgbxTexture* pattern_;
 };
 
-/// Short spans (the flag's small triangles) and patterned ones (whose texel fetch does not
-/// vectorise): one pass, shading only the pixels in front. depth and rgb point at pixel `first`.
+/// The n pixels of a row from fx0 pixels past the box's first column, kSpanLanes at a time:
+/// the depth test, then where any pixel of the block is in front, the block's colours stored
+/// to those pixels. Lanes past the span repeat its last pixel and are masked off. `at` holds
+/// the planes along the row; depth and rgbx point at the span's first pixel.
 template <bool kPatterned>
-void FillSpanOnePass(const SpanShader<kPatterned>& shader, const RowPlane& z, float fx0, int n, float* depth,
-                     uint8_t* rgb) {
-  for (int i = 0; i < n; ++i, rgb += 3) {
-    const float fx = fx0 + float(i);
-    const float here = z.at + z.step * fx;
-    if (!(here < depth[i])) continue;
-    depth[i] = here;
-    float r, g, b;
-    shader.At(fx, &r, &g, &b);
-    rgb[0] = ToByte(r);
-    rgb[1] = ToByte(g);
-    rgb[2] = ToByte(b);
+void FillSpan(const BlockShader<kPatterned>& shader, const Planes& planes, const float at[Planes::kCount],
+              float fx0, int n, float* depth, uint32_t* rgbx) {
+  const float z_at = at[Planes::kDepth], z_step = planes.dx[Planes::kDepth];
+  for (int start = 0; start < n; start += kSpanLanes, depth += kSpanLanes, rgbx += kSpanLanes) {
+    float fx[kSpanLanes];
+    int32_t in_front[kSpanLanes];
+    int any = 0;
+#pragma omp simd reduction(| : any)
+    for (int i = 0; i < kSpanLanes; ++i) {
+      fx[i] = fx0 + float(std::min(start + i, n - 1));
+      const float here = z_at + z_step * fx[i];
+      const bool nearer = start + i < n && here < depth[i];
+      depth[i] = nearer ? here : depth[i];
+      in_front[i] = nearer;
+      any |= nearer;
+    }
+    if (!any) continue;
+    uint32_t colour[kSpanLanes];
+    shader.Shade([at](int k, int) { return at[k]; }, fx, colour);
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) rgbx[i] = in_front[i] ? colour[i] : rgbx[i];
   }
 }
 
-/// Long plain spans (the ground, the pole): three passes, the first two free of branches so
-/// that they vectorise: the depth test (keeping a mask), the colours of every pixel, then the
-/// stores where the mask is set. depth and rgb point at pixel `first`.
-void FillSpanThreePasses(const SpanShader<false>& shader, const RowPlane& z, float fx0, int n,
-                         float* __restrict depth, uint8_t* __restrict rgb) {
-  constexpr int kMaxSpan = 4096;
-  alignas(32) uint8_t visible[kMaxSpan];
-  alignas(32) uint8_t red[kMaxSpan], green[kMaxSpan], blue[kMaxSpan];
-  int in_front = 0;
-  for (int i = 0; i < n; ++i) {
-    const float here = z.at + z.step * (fx0 + float(i));
-    const bool nearer = here < depth[i];
-    depth[i] = nearer ? here : depth[i];
-    visible[i] = nearer;
-    in_front += nearer;
-  }
-  if (in_front == 0) return;
-  for (int i = 0; i < n; ++i) {
-    float r, g, b;
-    shader.At(fx0 + float(i), &r, &g, &b);
-    red[i] = ToByte(r);
-    green[i] = ToByte(g);
-    blue[i] = ToByte(b);
-  }
-  for (int i = 0; i < n; ++i, rgb += 3) {
-    if (in_front < n && !visible[i]) continue;
-    rgb[0] = red[i];
-    rgb[1] = green[i];
-    rgb[2] = blue[i];
-  }
-}
-
+/// A narrow triangle's pixels, kSpanLanes at a time whatever their rows, so that a triangle a
+/// few pixels across takes a block or two rather than a block a row. Each lane holds its
+/// pixel's place in the tile and its distance from the box's first column and row; plane k on
+/// the lane's row is origin + dy * fy, as along a row. The depth test and the stores go pixel
+/// by pixel; no pixel is in a block twice.
 template <bool kPatterned>
-void FillSpanInterpolated(const TriangleSetup& t, const Material& material, const Texture& pattern, float fy,
-                          int first, int last, float* depth, uint8_t* rgb) {
-  constexpr int kLongSpan = 16;  ///< px: below this the passes' set-up costs more than they save
-  const SpanShader<kPatterned> shader(t, material, pattern, fy);
-  const RowPlane z = AlongRow(t.depth, fy);
-  const int n = last - first + 1;
-  const float fx0 = float(first - t.min_x);
-  if constexpr (!kPatterned) {
-    if (n >= kLongSpan) return FillSpanThreePasses(shader, z, fx0, n, depth, rgb);
+class PixelBlocks {
+ public:
+  PixelBlocks(const BlockShader<kPatterned>& shader, const Planes& planes, const TriangleSetup& t,
+              const TileTarget& target)
+      : shader_(shader), planes_(planes), t_(t), target_(target) {}
+
+  /// Pixels first .. last of row y into the block, which is shaded whenever it is full.
+  void AddSpan(int y, int first, int last) {
+    const int32_t row = int32_t(size_t(y - target_.rect.y0) * target_.stride) - target_.rect.x0;
+    const int32_t row_from_box = y - t_.min_y;
+    for (int x = first; x <= last; ++x) {
+      offset_[count_] = row + x;
+      column_[count_] = x - t_.min_x;
+      row_[count_] = row_from_box;
+      if (++count_ == kSpanLanes) Flush();
+    }
   }
-  FillSpanOnePass(shader, z, fx0, n, depth, rgb);
+
+  /// Shades the pixels added since the last full block; lanes past them repeat the last one
+  /// and are masked off.
+  void Flush() {
+    const int count = count_;
+    if (count == 0) return;
+    count_ = 0;
+    for (int i = count; i < kSpanLanes; ++i) {
+      offset_[i] = offset_[count - 1];
+      column_[i] = column_[count - 1];
+      row_[i] = row_[count - 1];
+    }
+    float fx[kSpanLanes], fy[kSpanLanes], there[kSpanLanes];
+    for (int i = 0; i < kSpanLanes; ++i) {
+      fx[i] = float(column_[i]);
+      fy[i] = float(row_[i]);
+      there[i] = target_.depth[offset_[i]];
+    }
+    const float* origin = planes_.origin;
+    const float* dy = planes_.dy;
+    const auto at = [origin, dy, &fy](int k, int i) { return origin[k] + dy[k] * fy[i]; };
+    const float z_step = planes_.dx[Planes::kDepth];
+    float here[kSpanLanes];
+    int32_t in_front[kSpanLanes];
+    int any = 0;
+#pragma omp simd reduction(| : any)
+    for (int i = 0; i < kSpanLanes; ++i) {
+      here[i] = at(Planes::kDepth, i) + z_step * fx[i];
+      in_front[i] = i < count && here[i] < there[i];
+      any |= in_front[i];
+    }
+    if (!any) return;
+    uint32_t colour[kSpanLanes];
+    shader_.Shade(at, fx, colour);
+    for (int i = 0; i < count; ++i) {
+      if (!in_front[i]) continue;
+      target_.depth[offset_[i]] = here[i];
+      target_.rgbx[offset_[i]] = colour[i];
+    }
+  }
+
+ private:
+  const BlockShader<kPatterned>& shader_;
+  const Planes& planes_;
+  const TriangleSetup& t_;
+  const TileTarget& target_;
+  int count_ = 0;
+  int32_t offset_[kSpanLanes];  ///< from the tile's first pixel, in both its colour and depth
+  int32_t column_[kSpanLanes];  ///< from the box's first column
+  int32_t row_[kSpanLanes];     ///< from the box's first row
+};
+
+/// n RGBX words => n RGB pixels. With AVX2, 8 pixels at a time: in each 16-byte half the
+/// R, G, B bytes of its 4 pixels go to the front, then the two 12-byte runs side by side. All
+/// 32 bytes are stored while 3 more pixels follow (the next 8 write the last 8 bytes again);
+/// the row's last pixels are stored as exactly 24 bytes, the very last 8 from n - 8 (which may
+/// write pixels again, with the same bytes), so nothing is written past the row.
+void RgbxToRgb(const uint32_t* rgbx, int n, uint8_t* rgb) {
+  int i = 0;
+#if defined(__AVX2__)
+  const __m256i pack = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,  //
+                                        0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+  const __m256i join = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 3, 7);
+  const auto packed = [&](int first) {
+    const __m256i eight = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(rgbx + first));
+    return _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(eight, pack), join);
+  };
+  const auto store_24 = [&](int first) {
+    const __m256i bytes = packed(first);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(rgb + 3 * first), _mm256_castsi256_si128(bytes));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(rgb + 3 * first + 16), _mm256_extracti128_si256(bytes, 1));
+  };
+  for (; n - i >= 11; i += 8) _mm256_storeu_si256(reinterpret_cast<__m256i*>(rgb + 3 * i), packed(i));
+  for (; n - i > 8; i += 8) store_24(i);
+  if (n >= 8 && i < n) {
+    store_24(n - 8);
+    i = n;
+  }
+#endif
+  for (; i < n; ++i) std::memcpy(rgb + 3 * i, rgbx + i, 3);
 }
 
-/// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel.
-/// depth and rgb point at pixel `first`.
-void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy, int first, int last,
-                   float* depth, uint8_t* rgb) {
+/// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel, for the
+/// n pixels of a row from fx0 pixels past the box's first column. `at` holds the planes along
+/// the row; depth and rgbx point at the span's first pixel.
+void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, const Planes& planes,
+                   const float at[Planes::kCount], float fx0, int n, float* depth, uint32_t* rgbx) {
   const RenderScene& scene = *context.scene;
   const Material& material = scene.materials[t.material];
-  const RowPlane z = AlongRow(t.depth, fy), inverse_w = AlongRow(t.inverse_w, fy);
-  RowPlane channel[kPlaneChannels];
-  for (int k = 0; k < kPlaneChannels; ++k) channel[k] = AlongRow(t.channels[k], fy);
-  for (int x = first; x <= last; ++x) {
-    const float fx = float(x - t.min_x);
-    const float depth_here = z.at + z.step * fx;
-    float& depth_there = depth[x - first];
-    if (!(depth_here < depth_there)) continue;
-    depth_there = depth_here;
-    const float w = 1.0f / (inverse_w.at + inverse_w.step * fx);
+  const auto value = [&](int k, float fx) { return at[k] + planes.dx[k] * fx; };
+  for (int i = 0; i < n; ++i) {
+    const float fx = fx0 + float(i);
+    const float depth_here = value(Planes::kDepth, fx);
+    if (!(depth_here < depth[i])) continue;
+    depth[i] = depth_here;
+    const float w = 1.0f / value(Planes::kInverseW, fx);
     float c[kPlaneChannels];
-    for (int k = 0; k < kPlaneChannels; ++k) c[k] = (channel[k].at + channel[k].step * fx) * w;
+    for (int k = 0; k < kPlaneChannels; ++k) c[k] = value(Planes::kChannel + k, fx) * w;
     Eigen::Vector3f normal = Eigen::Vector3f(c[3], c[4], c[5]).normalized();
     if (t.back_facing) normal = -normal;
     const Shade shade =
@@ -147,54 +262,152 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, float fy
       base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) * (1.0f / 255));
     }
     const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
-    uint8_t* pixel = rgb + 3 * (x - first);
-    pixel[0] = ToByte(colour[0]);
-    pixel[1] = ToByte(colour[1]);
-    pixel[2] = ToByte(colour[2]);
+    rgbx[i] = PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
+  }
+}
+
+/// Every pixel of columns first .. last, row after row.
+class BoxSpans {
+ public:
+  BoxSpans(int first, int last) : first_(first), last_(last) {}
+  bool Span(int* first, int* last) const {
+    *first = first_;
+    *last = last_;
+    return true;
+  }
+  void NextRow() {}
+
+ private:
+  int first_, last_;
+};
+
+/// Rows y_first .. y_last of a triangle in the tile, each row's pixels given by `spans` (RowSpans
+/// LaneSpans or BoxSpans, positioned at y_first) and drawn by fill_span(y, first, last).
+template <class Spans, class FillSpanAt>
+void FillRows(const TileTarget& target, int y_first, int y_last, Spans spans, const FillSpanAt& fill_span) {
+  for (int y = y_first; y <= y_last; ++y, spans.NextRow()) {
+    int first = 0, last = 0;
+    if (!spans.Span(&first, &last)) continue;
+    first = std::max(first, target.rect.x0);
+    last = std::min(last, target.rect.x1 - 1);
+    if (first <= last) fill_span(y, first, last);
   }
 }
 
 }  // namespace
 
-void ClearTile(const RenderScene& scene, const TileTarget& target) {
+TileBuffer::TileBuffer(int size)
+    : stride_(size_t(size) + kSpanLanes - 1),
+      rgbx_(stride_ * size, PackRgbx(0, 0, 0)),
+      depth_(stride_ * size, 1.0f) {}
+
+TileTarget TileBuffer::Target(const TileRect& rect) {
+  TileTarget target;
+  target.rect = rect;
+  target.rgbx = rgbx_.data();
+  target.depth = depth_.data();
+  target.stride = stride_;
+  return target;
+}
+
+void RgbxTexture::Assign(const Texture& texture) {
+  if (texture.width == width && texture.height == height && texture.rgb == source) return;
+  source = texture.rgb;
+  width = texture.width;
+  height = texture.height;
+  texels.resize(size_t(width) * height);
+  for (size_t i = 0; i < texels.size(); ++i) {
+    texels[i] = PackRgbx(texture.rgb[3 * i], texture.rgb[3 * i + 1], texture.rgb[3 * i + 2]);
+  }
+}
+
+void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer) {
   const TileRect& tile = target.rect;
   const int pixels = tile.x1 - tile.x0;
   for (int y = tile.y0; y < tile.y1; ++y) {
-    const float t = target.image_height > 1 ? float(y) / (target.image_height - 1) : 0.0f;
+    RgbxToRgb(target.Rgbx(tile.x0, y), pixels, framebuffer->Pixel(tile.x0, y));
+    if (keep_depth) {
+      std::memcpy(&framebuffer->depth[size_t(y) * framebuffer->width + tile.x0], target.Depth(tile.x0, y),
+                  size_t(pixels) * sizeof(float));
+    }
+  }
+}
+
+void SkyRows(const RenderScene& scene, int height, std::vector<uint32_t>* rows) {
+  rows->resize(size_t(height));
+  for (int y = 0; y < height; ++y) {
+    const float t = height > 1 ? float(y) / (height - 1) : 0.0f;
     const Eigen::Vector3f sky = scene.sky_top + t * (scene.sky_horizon - scene.sky_top);
-    // Four pixels are 12 bytes: copy that block along the row, then the last few pixels.
-    uint8_t block[12];
-    for (int k = 0; k < 12; ++k) block[k] = ToByte(sky[k % 3]);
-    uint8_t* row = target.Pixel(tile.x0, y);
-    int x = 0;
-    for (; x + 4 <= pixels; x += 4) std::memcpy(row + 3 * x, block, sizeof(block));
-    for (; x < pixels; ++x) std::memcpy(row + 3 * x, block, 3);
-    std::fill_n(target.Depth(tile.x0, y), pixels, 1.0f);
+    (*rows)[y] = PackRgbx(ToByte(sky[0]), ToByte(sky[1]), ToByte(sky[2]));
+  }
+}
+
+void ClearTile(const uint32_t* sky_rows, const TileTarget& target) {
+  // Whole blocks of kSpanLanes pixels, the last reaching into the row's room past x1.
+  const TileRect& tile = target.rect;
+  const int pixels = tile.x1 - tile.x0;
+  for (int y = tile.y0; y < tile.y1; ++y) {
+    const uint32_t colour = sky_rows[y];
+    uint32_t* rgbx = target.Rgbx(tile.x0, y);
+    float* depth = target.Depth(tile.x0, y);
+    for (int start = 0; start < pixels; start += kSpanLanes) {
+#pragma omp simd
+      for (int i = start; i < start + kSpanLanes; ++i) {
+        rgbx[i] = colour;
+        depth[i] = 1.0f;
+      }
+    }
   }
 }
 
 void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, const TileTarget& target) {
   const TileRect& tile = target.rect;
-  const Material& material = context.scene->materials[t.material];
   const int y_first = std::max(t.min_y, tile.y0), y_last = std::min(t.max_y, tile.y1 - 1);
-  if (y_first > y_last) return;
-  RowSpans spans(t, y_first);
-  for (int y = y_first; y <= y_last; ++y, spans.NextRow()) {
-    int first = 0, last = 0;
-    if (!spans.Span(&first, &last)) continue;
-    first = std::max(first, tile.x0);
-    last = std::min(last, tile.x1 - 1);
-    if (first > last) continue;
-    const float fy = float(y - t.min_y);
-    float* depth = target.Depth(first, y);
-    uint8_t* rgb = target.Pixel(first, y);
-    if (context.mode == ShadingMode::kPhong) {
-      FillSpanPhong(t, context, fy, first, last, depth, rgb);
-    } else if (material.patterned) {
-      FillSpanInterpolated<true>(t, material, context.scene->pattern, fy, first, last, depth, rgb);
+  const int x_first = std::max(t.min_x, tile.x0), x_last = std::min(t.max_x, tile.x1 - 1);
+  if (y_first > y_last || x_first > x_last) return;
+  // Narrow triangles are walked in a window; larger ones are first tested against the box,
+  // which skips the rows of boxes they miss or cover whole.
+  const bool in_window = t.narrow && x_last - x_first < LaneSpans::kWidth;
+  const BoxCover cover = in_window ? BoxCover::kPart : CoverOfBox(t, x_first, y_first, x_last, y_last);
+  if (cover == BoxCover::kNone) return;
+  const Planes planes(t);
+  // fill(at, fx0, n, depth, rgbx) draws n pixels of a row: each row's planes and pixels for it.
+  const auto fill_rows = [&](const auto& fill) {
+    const auto fill_span = [&](int y, int first, int last) {
+      alignas(32) float at[Planes::kCount];
+      planes.AlongRow(float(y - t.min_y), at);
+      fill(at, float(first - t.min_x), last - first + 1, target.Depth(first, y), target.Rgbx(first, y));
+    };
+    if (in_window) {
+      FillRows(target, y_first, y_last, LaneSpans(t, x_first, x_last, y_first), fill_span);
+    } else if (cover == BoxCover::kAll) {
+      FillRows(target, y_first, y_last, BoxSpans(x_first, x_last), fill_span);
     } else {
-      FillSpanInterpolated<false>(t, material, context.scene->pattern, fy, first, last, depth, rgb);
+      FillRows(target, y_first, y_last, RowSpans(t, y_first), fill_span);
     }
+  };
+  // Narrow triangles' pixels in blocks of any rows; the others' a row at a time.
+  const auto fill = [&](const auto& shader) {
+    if (in_window) {
+      PixelBlocks blocks(shader, planes, t, target);
+      FillRows(target, y_first, y_last, LaneSpans(t, x_first, x_last, y_first),
+               [&](int y, int first, int last) { blocks.AddSpan(y, first, last); });
+      blocks.Flush();
+    } else {
+      fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
+        FillSpan(shader, planes, at, fx0, n, depth, rgbx);
+      });
+    }
+  };
+  const Material& material = context.scene->materials[t.material];
+  if (context.mode == ShadingMode::kPhong) {
+    fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
+      FillSpanPhong(t, context, planes, at, fx0, n, depth, rgbx);
+    });
+  } else if (material.patterned) {
+    fill(BlockShader<true>(planes, material, context.pattern));
+  } else {
+    fill(BlockShader<false>(planes, material, context.pattern));
   }
 }
 

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <vector>
 
 #include "framebuffer.hpp"
 #include "mesh.hpp"
@@ -12,51 +14,76 @@
 
 namespace flagsim::render {
 
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "TileTarget reads RGBX words as R, G, B bytes");
+
 /// Pixels [x0, x1) x [y0, y1) of the image.
 struct TileRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
-/// Where a tile is drawn: its pixels, stored in rows of `rgb_stride` bytes and `depth_stride`
-/// floats starting at pixel (x0, y0). The renderer points it at a small buffer of its own,
-/// which stays in cache while the tile is drawn; tests may point it into a Framebuffer.
+/// Pixels a span may run past its end: spans are shaded in blocks of this many, and a block's
+/// pixels past the span are read and written back unchanged.
+constexpr int kSpanLanes = 8;
+
+/// Where a tile is drawn: its pixels, colour as RGBX words (bytes R, G, B, 0 in memory) and
+/// depth as floats, both in rows of `stride` pixels starting at pixel (x0, y0). Each row has
+/// room for kSpanLanes - 1 pixels past x1 (see kSpanLanes).
 struct TileTarget {
   TileRect rect;
-  int image_height = 0;  ///< px, for the sky's gradient
-  uint8_t* rgb = nullptr;
-  size_t rgb_stride = 0;  ///< bytes from one row to the next
+  uint32_t* rgbx = nullptr;
   float* depth = nullptr;
-  size_t depth_stride = 0;  ///< floats from one row to the next
+  size_t stride = 0;  ///< pixels from one row to the next, rect.x1 - rect.x0 + kSpanLanes - 1 and up
 
-  uint8_t* Pixel(int x, int y) const {
-    return rgb + size_t(y - rect.y0) * rgb_stride + size_t(x - rect.x0) * 3;
-  }
-  float* Depth(int x, int y) const {
-    return depth + size_t(y - rect.y0) * depth_stride + size_t(x - rect.x0);
-  }
+  uint32_t* Rgbx(int x, int y) const { return rgbx + size_t(y - rect.y0) * stride + size_t(x - rect.x0); }
+  /// The pixel's R, G and B bytes.
+  uint8_t* Pixel(int x, int y) const { return reinterpret_cast<uint8_t*>(Rgbx(x, y)); }
+  float* Depth(int x, int y) const { return depth + size_t(y - rect.y0) * stride + size_t(x - rect.x0); }
+};
 
-  /// The part `rect` of a whole framebuffer.
-  static TileTarget Into(Framebuffer* framebuffer, const TileRect& rect) {
-    TileTarget target;
-    target.rect = rect;
-    target.image_height = framebuffer->height;
-    target.rgb = framebuffer->Pixel(rect.x0, rect.y0);
-    target.rgb_stride = size_t(framebuffer->width) * 3;
-    target.depth = &framebuffer->depth[size_t(rect.y0) * framebuffer->width + rect.x0];
-    target.depth_stride = size_t(framebuffer->width);
-    return target;
-  }
+/// Pixels of a tile's own, for tiles of up to size x size: black, at far depth until drawn.
+/// Small enough to stay in cache while a tile is drawn.
+class TileBuffer {
+ public:
+  explicit TileBuffer(int size);
+  /// The buffer as the target of `rect`.
+  TileTarget Target(const TileRect& rect);
+
+ private:
+  size_t stride_;
+  std::vector<uint32_t> rgbx_;
+  std::vector<float> depth_;
+};
+
+/// RGBX packed the way TileTarget stores it: R in the lowest byte, the first in memory.
+inline uint32_t PackRgbx(uint32_t r, uint32_t g, uint32_t b) { return r | g << 8 | b << 16; }
+
+/// The drawn tile into its place in `framebuffer`: colour as RGB, depth too if `keep_depth`.
+void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer);
+
+/// A pattern as RGBX words (PackRgbx), so that fetching a texel is one load.
+struct RgbxTexture {
+  int width = 0, height = 0;
+  std::vector<uint32_t> texels;  ///< row-major, top row first, as Texture::rgb
+  std::vector<uint8_t> source;   ///< the RGB bytes they are from
+
+  /// The texels of `texture`; nothing to do if they are from the same bytes already.
+  void Assign(const Texture& texture);
 };
 
 /// What the per-pixel shading reads besides the triangle.
 struct ShadeContext {
   const RenderScene* scene = nullptr;
+  const RgbxTexture* pattern = nullptr;  ///< scene->pattern as RGBX, for patterned materials
   ShadingMode mode = ShadingMode::kGouraud;
   Eigen::Vector3f eye = Eigen::Vector3f::Zero();  ///< world frame, for per-pixel lighting
 };
 
-/// Sky gradient and far depth over the tile.
-void ClearTile(const RenderScene& scene, const TileTarget& target);
+/// The sky's RGBX colour on each row of an image `height` px high: sky_top on the first row,
+/// blending linearly to sky_horizon on the last.
+void SkyRows(const RenderScene& scene, int height, std::vector<uint32_t>* rows);
+
+/// The sky (`sky_rows[y]` on image row y) and far depth over the tile.
+void ClearTile(const uint32_t* sky_rows, const TileTarget& target);
 
 /// Draws the part of `triangle` inside `tile`.
 ///   kFlat, kGouraud: channels = diffuse rgb, specular rgb, u, v; colour = base * D + S

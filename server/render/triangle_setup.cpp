@@ -8,6 +8,14 @@ namespace {
 
 int64_t Snap(float pixels) { return static_cast<int64_t>(std::lround(double(pixels) * kSubpixels)); }
 
+/// Edge i's E + bias at the centre of pixel (x, y), in subpixels squared, E(P) = dx (Py - y_i) -
+/// dy (Px - x_i): >= 0 inside.
+int64_t EdgeAt(const TriangleSetup& setup, int i, int x, int y) {
+  const int64_t half = kSubpixels / 2;
+  return setup.edge_dx[i] * (int64_t(y) * kSubpixels + half - setup.edge_y[i]) -
+         setup.edge_dy[i] * (int64_t(x) * kSubpixels + half - setup.edge_x[i]) + setup.edge_bias[i];
+}
+
 /// floor(a / b) for b > 0.
 int64_t FloorDiv(int64_t a, int64_t b) { return a / b - ((a % b != 0) && (a < 0)); }
 
@@ -62,16 +70,22 @@ bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVer
 
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
-    setup->edge_x[i] = X[i];
-    setup->edge_y[i] = Y[i];
-    setup->edge_dx[i] = X[j] - X[i];
-    setup->edge_dy[i] = Y[j] - Y[i];
+    setup->edge_x[i] = int32_t(X[i]);
+    setup->edge_y[i] = int32_t(Y[i]);
+    setup->edge_dx[i] = int32_t(X[j] - X[i]);
+    setup->edge_dy[i] = int32_t(Y[j] - Y[i]);
     // With y down and positive area the vertices run clockwise on screen: a top edge is
     // horizontal going right, a left edge goes up.
     const bool top = setup->edge_dy[i] == 0 && setup->edge_dx[i] > 0;
     const bool left = setup->edge_dy[i] < 0;
     setup->edge_bias[i] = top || left ? 0 : -1;
   }
+  // LaneSpans' int32 holds E: with the vertices within W = kWidth px across and H = 256 px
+  // down, pixel centres in a window are within W + kWidth px across and H + 1 px down of each
+  // vertex, so |E| <= |dx| (H + 1) + |dy| (W + kWidth) <= (8 * 257 + 256 * 16) px^2 * 256^2 < 2^31.
+  setup->narrow =
+      std::max({X[0], X[1], X[2]}) - std::min({X[0], X[1], X[2]}) <= LaneSpans::kWidth * kSubpixels &&
+      std::max({Y[0], Y[1], Y[2]}) - std::min({Y[0], Y[1], Y[2]}) <= 256 * kSubpixels;
 
   float x[3], y[3], values[3];
   for (int i = 0; i < 3; ++i) {
@@ -141,6 +155,28 @@ void RowSpans::NextRow() {
       ++edge.quotient;
     }
   }
+}
+
+LaneSpans::LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y) : x0_(x0) {
+  for (int i = 0; i < kWidth; ++i) past_end_[i] = x0 + i > x_last ? -1 : 0;
+  for (int k = 0; k < 3; ++k) {
+    growth_[k] = int32_t(setup.edge_dx[k] * kSubpixels);
+    const int64_t at_x0 = EdgeAt(setup, k, x0, y), per_pixel = -int64_t(setup.edge_dy[k]) * kSubpixels;
+    for (int i = 0; i < kWidth; ++i) inside_[k][i] = int32_t(at_x0 + per_pixel * i);
+  }
+}
+
+BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1) {
+  bool all = true;
+  for (int i = 0; i < 3; ++i) {
+    int inside = 0;
+    for (const int x : {x0, x1}) {
+      for (const int y : {y0, y1}) inside += EdgeAt(setup, i, x, y) >= 0;
+    }
+    if (inside == 0) return BoxCover::kNone;
+    all = all && inside == 4;
+  }
+  return all ? BoxCover::kAll : BoxCover::kPart;
 }
 
 bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last) {

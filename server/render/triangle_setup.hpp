@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 
 namespace flagsim::render {
@@ -33,13 +34,15 @@ struct ScreenVertex {
 
 struct TriangleSetup {
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  ///< px, inclusive, inside the image
-  // Edge i runs from vertex i to vertex i + 1, in subpixels: E(P) = dx (Py - y) - dy (Px - x).
-  int64_t edge_x[3] = {}, edge_y[3] = {}, edge_dx[3] = {}, edge_dy[3] = {};
-  int64_t edge_bias[3] = {};       ///< 0 for top and left edges, -1 for the others
+  // Edge i runs from vertex i to vertex i + 1, in subpixels: E(P) = dx (Py - y) - dy (Px - x),
+  // worked out in int64. (Clipped to the guard band, vertices are within a few image widths.)
+  int32_t edge_x[3] = {}, edge_y[3] = {}, edge_dx[3] = {}, edge_dy[3] = {};
+  int32_t edge_bias[3] = {};       ///< 0 for top and left edges, -1 for the others
   Plane depth;                     ///< window depth, linear in the image
   Plane inverse_w;                 ///< 1 / w
   Plane channels[kPlaneChannels];  ///< channel / w: divide by inverse_w for the channel
   bool back_facing = false;        ///< the vertices run clockwise as seen (after the y flip: counter)
+  bool narrow = false;             ///< small enough for LaneSpans in any window
   int material = 0;                ///< index into the scene's materials
 };
 
@@ -53,6 +56,14 @@ bool IsBackFacing(const ScreenVertex& a, const ScreenVertex& b, const ScreenVert
 
 /// The covered pixels of row y: [*first, *last] within [min_x, max_x]; false if none.
 bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last);
+
+/// How much of a box of pixels inside the triangle's box is covered.
+enum class BoxCover { kNone, kPart, kAll };
+
+/// Pixels [x0, x1] x [y0, y1] (inclusive, within min_x .. max_x, min_y .. max_y), from the edge
+/// functions at the four corner pixels' centres: each is linear, so all four outside one edge
+/// leave the box uncovered, and all four inside every edge cover it all.
+BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1);
 
 /// The same spans row after row, with no division per row: each edge's bound floor(K / m)
 /// is carried as quotient and remainder, and K grows by the same amount every row.
@@ -72,5 +83,47 @@ class RowSpans {
   Edge edges_[3];
   int min_x_, max_x_;
 };
+
+/// The same spans in a window of kWidth columns from x0, for narrow triangles: each edge
+/// function evaluated at the window's pixel centres in int32, a row's span the lanes inside all
+/// three edges. No division, no branch per edge.
+class LaneSpans {
+ public:
+  static constexpr int kWidth = 8;  ///< px
+
+  /// Positioned at row y, spans limited to columns x0 .. x_last (x_last - x0 < kWidth), for a
+  /// `narrow` setup.
+  LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y);
+  bool Span(int* first, int* last) const;  ///< this row's covered pixels; false if none
+  void NextRow();
+
+ private:
+  int32_t inside_[3][kWidth];  ///< E + bias at each lane's pixel centre: >= 0 inside the edge
+  int32_t growth_[3];          ///< of E a row
+  int32_t past_end_[kWidth];   ///< -1 for lanes past x_last, else 0
+  int x0_;                     ///< the window's first column
+};
+
+// Inline: a narrow triangle's rows are short, and a call would cost as much as either.
+inline bool LaneSpans::Span(int* first, int* last) const {
+  // Inside all three edges and not past x_last: no sign bit in the or. Covered lanes are contiguous.
+  int low = kWidth, high = -1;
+#pragma omp simd reduction(min : low) reduction(max : high)
+  for (int i = 0; i < kWidth; ++i) {
+    const bool covered = (inside_[0][i] | inside_[1][i] | inside_[2][i] | past_end_[i]) >= 0;
+    low = std::min(low, covered ? i : kWidth);
+    high = std::max(high, covered ? i : -1);
+  }
+  *first = x0_ + low;
+  *last = x0_ + high;
+  return low <= high;
+}
+
+inline void LaneSpans::NextRow() {
+  for (int k = 0; k < 3; ++k) {
+#pragma omp simd
+    for (int i = 0; i < kWidth; ++i) inside_[k][i] += growth_[k];
+  }
+}
 
 }  // namespace flagsim::render

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "tile_drawing.hpp"
+
 namespace flagsim::render {
 namespace {
 
@@ -81,10 +83,11 @@ TEST(DrawLine, TileByTileDrawsWhatTheWholeLineDraws) {
   line.z0 = 0.2f;
   line.z1 = 0.6f;
   line.rgb[0] = 255;
-  DrawLine(line, TileTarget::Into(&whole, TileRect{0, 0, 40, 30}));
+  DrawInTile(&whole, TileRect{0, 0, 40, 30}, [&](const TileTarget& tile) { DrawLine(line, tile); });
   for (int y = 0; y < 30; y += 8) {
     for (int x = 0; x < 40; x += 8) {
-      DrawLine(line, TileTarget::Into(&tiled, TileRect{x, y, std::min(x + 8, 40), std::min(y + 8, 30)}));
+      DrawInTile(&tiled, TileRect{x, y, std::min(x + 8, 40), std::min(y + 8, 30)},
+                 [&](const TileTarget& tile) { DrawLine(line, tile); });
     }
   }
   EXPECT_EQ(whole.rgb, tiled.rgb);
@@ -99,11 +102,12 @@ TEST(DrawLine, HiddenBehindNearerDepth) {
   far_line.x1 = 9;
   far_line.z0 = far_line.z1 = 0.7f;
   far_line.rgb[1] = 200;
-  DrawLine(far_line, TileTarget::Into(&framebuffer, TileRect{0, 0, 10, 10}));
+  DrawInTile(&framebuffer, TileRect{0, 0, 10, 10}, [&](const TileTarget& tile) { DrawLine(far_line, tile); });
   EXPECT_EQ(framebuffer.Pixel(5, 0)[1], 0);
   LineSetup near_line = far_line;
   near_line.z0 = near_line.z1 = 0.3f;
-  DrawLine(near_line, TileTarget::Into(&framebuffer, TileRect{0, 0, 10, 10}));
+  DrawInTile(&framebuffer, TileRect{0, 0, 10, 10},
+             [&](const TileTarget& tile) { DrawLine(near_line, tile); });
   EXPECT_EQ(framebuffer.Pixel(5, 0)[1], 200);
 }
 

@@ -49,6 +49,19 @@ TEST(Renderer, SameImageAtAnyThreadCount) {
   }
 }
 
+TEST(Renderer, AChangedPatternIsDrawnInTheNextFrame) {
+  RenderScene scene = WavyFlagScene();
+  Renderer renderer;
+  const RenderOptions options;
+  Framebuffer before, after, fresh;
+  renderer.Render(scene, SmallCamera(), options, &before);
+  scene.pattern = MakePattern(FlagDesign::kChecker, scene.pattern.width, scene.pattern.height);
+  renderer.Render(scene, SmallCamera(), options, &after);
+  Renderer().Render(scene, SmallCamera(), options, &fresh);
+  EXPECT_NE(after.rgb, before.rgb);
+  EXPECT_EQ(after.rgb, fresh.rgb);
+}
+
 TEST(Renderer, TheFlagIsDrawnInFrontOfTheSky) {
   const RenderScene scene = WavyFlagScene();
   Renderer renderer;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -162,6 +163,82 @@ TEST(RowSpans, SteppingRowByRowGivesTheSameSpansAsSolvingEachRow) {
       }
     }
   }
+}
+
+TEST(LaneSpans, NarrowTrianglesGetTheSameSpansInAnyWindow) {
+  std::mt19937 random(12);
+  std::uniform_real_distribution<float> corner(-4.0f, 104.0f), offset(-6.0f, 6.0f);
+  int narrow = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const float x = corner(random), y = corner(random);
+    TriangleSetup setup;
+    if (!SetupTriangle(At(x, y), At(x + offset(random), y + offset(random)),
+                       At(x + offset(random), y + offset(random)), 100, 100, &setup) ||
+        !setup.narrow) {
+      continue;
+    }
+    ++narrow;
+    // Windows from the box's first column and from each column after it, as tiles cut it.
+    for (int x0 = setup.min_x; x0 <= setup.max_x; ++x0) {
+      const int x_last = std::min(setup.max_x, x0 + LaneSpans::kWidth - 1);
+      LaneSpans spans(setup, x0, x_last, setup.min_y);
+      for (int y = setup.min_y; y <= setup.max_y; ++y, spans.NextRow()) {
+        int first = 0, last = 0, lane_first = 0, lane_last = 0;
+        const bool solved = RowSpan(setup, y, &first, &last);
+        first = std::max(first, x0);
+        last = std::min(last, x_last);
+        ASSERT_EQ(spans.Span(&lane_first, &lane_last), solved && first <= last) << "trial " << trial;
+        if (solved && first <= last) {
+          ASSERT_EQ(lane_first, first);
+          ASSERT_EQ(lane_last, last);
+        }
+      }
+    }
+  }
+  EXPECT_GT(narrow, 1000);
+}
+
+TEST(CoverOfBox, NoneAndAllAgreeWithTheRowSpans) {
+  std::mt19937 random(13);
+  std::uniform_real_distribution<float> coordinate(-20.0f, 120.0f);
+  int decided = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    TriangleSetup setup;
+    if (!SetupTriangle(At(coordinate(random), coordinate(random)), At(coordinate(random), coordinate(random)),
+                       At(coordinate(random), coordinate(random)), 100, 100, &setup)) {
+      continue;
+    }
+    std::uniform_int_distribution<int> x(setup.min_x, setup.max_x), y(setup.min_y, setup.max_y);
+    for (int box = 0; box < 20; ++box) {
+      const int xa = x(random), xb = x(random), ya = y(random), yb = y(random);
+      const int x0 = std::min(xa, xb), x1 = std::max(xa, xb), y0 = std::min(ya, yb), y1 = std::max(ya, yb);
+      int covered = 0;
+      for (int row = y0; row <= y1; ++row) {
+        int first = 0, last = 0;
+        if (RowSpan(setup, row, &first, &last))
+          covered += std::max(0, std::min(last, x1) - std::max(first, x0) + 1);
+      }
+      const BoxCover cover = CoverOfBox(setup, x0, y0, x1, y1);
+      if (cover == BoxCover::kNone) {
+        EXPECT_EQ(covered, 0) << "trial " << trial;
+      } else if (cover == BoxCover::kAll) {
+        EXPECT_EQ(covered, (x1 - x0 + 1) * (y1 - y0 + 1)) << "trial " << trial;
+      }
+      decided += cover != BoxCover::kPart;
+    }
+  }
+  EXPECT_GT(decided, 1000);
+}
+
+TEST(LaneSpans, OnlySmallTrianglesAreNarrow) {
+  TriangleSetup setup;
+  ASSERT_TRUE(SetupTriangle(At(10, 10), At(18, 10), At(10, 60), 100, 100, &setup));
+  EXPECT_TRUE(setup.narrow);
+  ASSERT_TRUE(SetupTriangle(At(10, 10), At(18.5f, 10), At(10, 60), 100, 100, &setup));
+  EXPECT_FALSE(setup.narrow);
+  // Clamped to the image, the box is narrow, but not the triangle.
+  ASSERT_TRUE(SetupTriangle(At(-300, 10), At(4, 10), At(4, 14), 100, 100, &setup));
+  EXPECT_FALSE(setup.narrow);
 }
 
 }  // namespace
