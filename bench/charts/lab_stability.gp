@@ -4,18 +4,18 @@
 # bisection; lines: the theory on the exact w_max (2/w_max for the Euler variants and Verlet).
 load "bench/charts/lab_common.gp"
 set logscale xy 10
-set format x "10^{%L}"
-set format y "10^{%L}"
+set format x "1e%L"
+set format y "1e%L"
 set xlabel "structural stiffness (N/m); shear and bend moduli scaled with it"
 set ylabel "largest stable step (s)"
 set title "Stability map: 16x12 nodes, 1 s from rest in a steady breeze (unconditionally stable methods pass 0.1 s)"
 plot for [i in "1 3 4 5"] csv skip 1 using (only(word(integrators, int(i)), 2)):(only(word(integrators, int(i)), 4)) \
        with points pointtype 7 pointsize 1.4 linecolor rgb colour(int(i)) title word(integrators, int(i)).", measured", \
      csv skip 1 using (only("symplectic_euler", 2)):(only("symplectic_euler", 5)) \
-       with lines linewidth 2 dashtype 2 linecolor rgb colour(1) title "2 / w_{max} (symplectic Euler, Verlet)", \
+       smooth unique with lines linewidth 2 dashtype 2 linecolor rgb colour(1) title "2 / w_max (symplectic Euler, Verlet)", \
      csv skip 1 using (only("rk4", 2)):(only("rk4", 5)) \
-       with lines linewidth 2 dashtype 2 linecolor rgb colour(5) title "2.61 / w_{max} (RK4)", \
+       smooth unique with lines linewidth 2 dashtype 2 linecolor rgb colour(5) title "2.61 / w_max (RK4)", \
      csv skip 1 using (only("explicit_euler", 2)):(only("explicit_euler", 5)) \
-       with lines linewidth 2 dashtype 2 linecolor rgb colour(3) title "damping bound (explicit Euler)", \
+       smooth unique with lines linewidth 2 dashtype 2 linecolor rgb colour(3) title "damping bound (explicit Euler)", \
      csv skip 1 using (only("symplectic_euler", 2)):(only("symplectic_euler", 6)) \
-       with lines linewidth 1 dashtype 3 linecolor rgb colour(1) title "claimed from Gershgorin (symplectic Euler)"
+       smooth unique with lines linewidth 1 dashtype 3 linecolor rgb colour(1) title "claimed by the bound (symplectic Euler)"

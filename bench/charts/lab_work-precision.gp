@@ -4,8 +4,8 @@
 # integrator (and iteration count for xpbd and projective), steps halving along it.
 load "bench/charts/lab_common.gp"
 set logscale xy 10
-set format x "10^{%L}"
-set format y "10^{%L}"
+set format x "1e%L"
+set format y "1e%L"
 set xlabel "cost: CPU seconds per simulated second (one thread, float)"
 set ylabel "RMS error of the nodes on a 1280x720 image (px)"
 set title "Work against precision: breeze, 32x24 nodes, 0.2 s from rest, against converged RK4"

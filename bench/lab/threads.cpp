@@ -42,11 +42,12 @@ void Threads(const std::string& csv) {
   const Scene scene = LoadScene("breeze");
   std::printf("# %u hardware threads\n", std::thread::hardware_concurrency());
   Table table({"integrator", "cols", "rows", "threads", "ms_per_step", "speedup", "efficiency"}, csv);
+  // One block of rows per integrator and thread count (the charts join consecutive rows).
   for (const sim::IntegratorKind kind :
        {sim::IntegratorKind::kSymplecticEuler, sim::IntegratorKind::kImplicitEuler}) {
-    for (const int scale : {1, 2, 4, 8, 16}) {
-      double one_thread = 0;
-      for (const int threads : {1, 2, 3, 4}) {
+    std::vector<double> one_thread;
+    for (const int threads : {1, 2, 3, 4}) {
+      for (int scale = 1, grid = 0; scale <= 16; scale *= 2, ++grid) {
         sim::SimParams params = scene.sim;
         params.cols = 32 * scale;
         params.rows = 24 * scale;
@@ -55,8 +56,8 @@ void Threads(const std::string& csv) {
         sim::Simulation<float> simulation(params, scene.wind, scene.seed);
         for (int i = 0; i < 3; ++i) simulation.Step();
         const double seconds = SecondsPerStep(&simulation);
-        if (threads == 1) one_thread = seconds;
-        const double speedup = one_thread / seconds;
+        if (threads == 1) one_thread.push_back(seconds);
+        const double speedup = one_thread[grid] / seconds;
         table.Add({sim::IntegratorName(kind), std::to_string(params.cols), std::to_string(params.rows),
                    std::to_string(threads), Table::Number(1e3 * seconds), Table::Number(speedup),
                    Table::Number(speedup / threads)});
