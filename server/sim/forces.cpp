@@ -1,7 +1,11 @@
 #include "forces.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 namespace flagsim::sim {
 namespace {
@@ -34,62 +38,131 @@ void SpringKernel(const Real* __restrict x, const Real* __restrict y, const Real
   }
 }
 
-/// Wind on triangles (p, q, s) = (p0 + i, q0 + i, s0 + i) for i in [0, n), wind (wx, wy, wz)[i]:
-/// a third of C A n (n . w) each. With e = (q - p) x (s - p), |e| = 2A and n = e / |e|:
+/// Wind on the triangles of cells a in [begin, end): corners p = a + p_offset, q = p + q_offset,
+/// s = p + s_offset, wind (wx, wy, wz)[a]; the result goes to f[a]: a third of C A n (n . w)
+/// each. With e = (q - p) x (s - p), |e| = 2A and n = e / |e|:
 /// C A n (n . w) / 3 = (C / 6) e (e . w) / |e|. Relative wind subtracts the face's mean velocity.
 template <typename Real>
 void WindKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
                 const Real* __restrict vx, const Real* __restrict vy, const Real* __restrict vz,
                 const Real* __restrict wx, const Real* __restrict wy, const Real* __restrict wz,
-                Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, int p0, int q0, int s0, int n,
-                Real share, Real relative) {
+                Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, int begin, int end,
+                int p_offset, int q_offset, int s_offset, Real share, Real relative) {
   const Real third = Real(1) / Real(3);
-  for (int i = 0; i < n; ++i) {
-    const int p = p0 + i, q = q0 + i, s = s0 + i;
+  for (int a = begin; a < end; ++a) {
+    const int p = a + p_offset, q = p + q_offset, s = p + s_offset;
     const Real ax = x[q] - x[p], ay = y[q] - y[p], az = z[q] - z[p];
     const Real bx = x[s] - x[p], by = y[s] - y[p], bz = z[s] - z[p];
     const Real ex = ay * bz - az * by, ey = az * bx - ax * bz, ez = ax * by - ay * bx;
-    const Real ux = wx[i] - relative * third * (vx[p] + vx[q] + vx[s]);
-    const Real uy = wy[i] - relative * third * (vy[p] + vy[q] + vy[s]);
-    const Real uz = wz[i] - relative * third * (vz[p] + vz[q] + vz[s]);
+    const Real ux = wx[a] - relative * third * (vx[p] + vx[q] + vx[s]);
+    const Real uy = wy[a] - relative * third * (vy[p] + vy[q] + vy[s]);
+    const Real uz = wz[a] - relative * third * (vz[p] + vz[q] + vz[s]);
     const Real norm = std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortest * kShortest));
     const Real scale = share * (ex * ux + ey * uy + ez * uz) / norm;
-    fx[i] = scale * ex;
-    fy[i] = scale * ey;
-    fz[i] = scale * ez;
+    fx[a] = scale * ex;
+    fy[a] = scale * ey;
+    fz[a] = scale * ez;
   }
 }
 
-/// f[i] += sign * g[i] for i in [0, n).
+/// The grid's spring families, at most: structural, shear and bend, two directions each.
+constexpr int kMaxSpringFamilies = 6;
+/// Arrays a node's force is summed from: both ends of every family, and six faces.
+constexpr int kGatherSources = 2 * kMaxSpringFamilies + 6;
+
+/// Where one grid row's contributions are read: source k holds column c's at [c]. Sources come
+/// in a fixed order: per family, the springs' first ends then their far ends; then six faces.
 template <typename Real>
-void AddKernel(Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, const Real* __restrict gx,
-               const Real* __restrict gy, const Real* __restrict gz, int n, Real sign) {
+struct GatherSources {
+  const Real* x[kGatherSources];
+  const Real* y[kGatherSources];
+  const Real* z[kGatherSources];
+};
+
+/// Zero slots in front of the scratch arrays: the farthest a node reads back (bend springs two
+/// rows up), plus one row's worth of columns either side.
+int Padding(int cols) { return 2 * cols + 2; }
+
+/// f[start + c] = 0 for c in [first, end).
+template <typename Real>
+void ZeroColumns(NodeForces<Real>* f, int start, int first, int end) {
+  for (int c = first; c < end; ++c) f->x[start + c] = f->y[start + c] = f->z[start + c] = Real(0);
+}
+
+/// Rows [begin, end) of thread `thread` of `threads`: contiguous, as even as can be.
+RowBand ThreadBand(int rows, int thread, int threads) {
+  return {rows * thread / threads, rows * (thread + 1) / threads};
+}
+
+template <typename Real>
+NodeForces<Real> ZeroForces(size_t slots) {
+  NodeForces<Real> zero;
+  zero.x.assign(slots, Real(0));
+  zero.y.assign(slots, Real(0));
+  zero.z.assign(slots, Real(0));
+  return zero;
+}
+
+/// Source k is subtracted: the far ends of springs (every second of the first
+/// 2 kMaxSpringFamilies sources). Known at compile time, so the sum needs no multiplications.
+constexpr bool Subtracted(int k) { return k < 2 * kMaxSpringFamilies && k % 2 == 1; }
+
+/// Sums each node's force, for i in [0, n): gravity and air friction from its mass and velocity,
+/// then +- source[k][i] for k in a fixed order. One pass, every partial sum in registers.
+template <typename Real>
+void GatherKernel(const GatherSources<Real>& sources, const Real* __restrict mass, const Real* __restrict vx,
+                  const Real* __restrict vy, const Real* __restrict vz, Real gravity, Real friction,
+                  Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, int n) {
+#pragma omp simd
   for (int i = 0; i < n; ++i) {
-    fx[i] += sign * gx[i];
-    fy[i] += sign * gy[i];
-    fz[i] += sign * gz[i];
+    Real sx = -friction * mass[i] * vx[i];
+    Real sy = -mass[i] * gravity - friction * mass[i] * vy[i];
+    Real sz = -friction * mass[i] * vz[i];
+#pragma GCC unroll 18
+    for (int k = 0; k < kGatherSources; ++k) {
+      if (Subtracted(k)) {
+        sx -= sources.x[k][i];
+        sy -= sources.y[k][i];
+        sz -= sources.z[k][i];
+      } else {
+        sx += sources.x[k][i];
+        sy += sources.y[k][i];
+        sz += sources.z[k][i];
+      }
+    }
+    fx[i] = sx;
+    fy[i] = sy;
+    fz[i] = sz;
   }
 }
 
 }  // namespace
 
+// Scratch layout. Per-spring forces (per family) and per-face wind shares are stored on the node
+// grid, at index Padding(cols) + node: a spring at its first node, a face at its cell's top-left
+// node. Slots of springs and faces that do not exist (past the grid's edges, or the last row and
+// column of cells) are never written and stay 0, as do the Padding(cols) slots in front, so a
+// node reads its springs at fixed offsets (the far end of a spring from a at a - offset) and its
+// six faces at i, i - 1, i - cols and i - cols - 1 with no bounds checks: a missing one adds 0.
+
 template <typename Real>
 void ForceEvaluator<Real>::Resize(const ClothModel<Real>& model) {
-  const size_t nodes = model.num_nodes(), cells = model.num_cells();
-  spring_.resize(model.families.size());
-  for (NodeForces<Real>& family : spring_) {
-    family.x.resize(nodes);
-    family.y.resize(nodes);
-    family.z.resize(nodes);
-  }
-  for (NodeForces<Real>* faces : {&upper_, &lower_}) {
-    faces->x.resize(cells);
-    faces->y.resize(cells);
-    faces->z.resize(cells);
-  }
-  wind_x_.resize(model.cols - 1);
-  wind_y_.resize(model.cols - 1);
-  wind_z_.resize(model.cols - 1);
+  if (model.families.size() > kMaxSpringFamilies) throw std::invalid_argument("too many spring families");
+  std::vector<int> layout = {model.cols, model.rows};
+  for (const SpringFamily<Real>& family : model.families) layout.insert(layout.end(), {family.dr, family.dc});
+  if (layout == layout_) return;
+  layout_ = std::move(layout);
+  // Fresh zeros: slots a new layout never writes must not keep an old layout's forces.
+  const size_t slots = Padding(model.cols) + model.num_nodes();
+  spring_.assign(model.families.size(), ZeroForces<Real>(slots));
+  upper_ = lower_ = ZeroForces<Real>(slots);
+  zero_.assign(model.num_nodes(), Real(0));
+  column_wind_x_.resize(model.cols - 1);
+  column_wind_y_.resize(model.cols - 1);
+  column_wind_z_.resize(model.cols - 1);
+  wind_x_.assign(model.num_nodes(), Real(0));
+  wind_y_.assign(model.num_nodes(), Real(0));
+  wind_z_.assign(model.num_nodes(), Real(0));
 }
 
 template <typename Real>
@@ -97,91 +170,105 @@ void ForceEvaluator<Real>::SampleWind(const ClothModel<Real>& model, const WindF
   // Gusts vary along the flag; one sample per cell column, at the column's middle.
   for (int c = 0; c + 1 < model.cols; ++c) {
     const Vec3 w = wind.At(t, (c + 0.5) * double(model.dx));
-    wind_x_[c] = Real(w[0]);
-    wind_y_[c] = Real(w[1]);
-    wind_z_[c] = Real(w[2]);
+    column_wind_x_[c] = Real(w[0]);
+    column_wind_y_[c] = Real(w[1]);
+    column_wind_z_[c] = Real(w[2]);
   }
 }
 
-// Every spring whose first node is in row r, family by family.
+// The springs whose first node is in rows [band.begin, band.end), family by family, as one run
+// of consecutive first nodes a (far node a + offset): the runs are long, so the kernel spends its
+// time in full vectors. Where a row's far node does not exist (past the left or right edge) the
+// run computes a spring across the wrap; those slots are set back to 0 after it.
 template <typename Real>
-void ForceEvaluator<Real>::SpringRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r) {
+void ForceEvaluator<Real>::SpringBand(const ClothModel<Real>& model, const ClothState<Real>& state,
+                                      RowBand band) {
+  const int cols = model.cols, pad = Padding(cols);
   for (size_t f = 0; f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];
-    if (r + family.dr >= model.rows) continue;
+    const int offset = family.dr * cols + family.dc;
+    const int last_row = std::min(band.end, model.rows - family.dr);  // rows with springs: below
+    const int begin = band.begin * cols, end = std::min(last_row * cols, model.num_nodes() - offset);
+    if (begin >= end) continue;
     NodeForces<Real>& out = spring_[f];
     SpringKernel(state.x.data(), state.y.data(), state.z.data(), state.vx.data(), state.vy.data(),
-                 state.vz.data(), out.x.data(), out.y.data(), out.z.data(),
-                 model.index(r, family.first_col()), model.index(r, family.end_col(model.cols)),
-                 family.dr * model.cols + family.dc, family.stiffness, family.damping, family.rest_length);
+                 state.vz.data(), out.x.data() + pad, out.y.data() + pad, out.z.data() + pad, begin, end,
+                 offset, family.stiffness, family.damping, family.rest_length);
+    for (int r = band.begin; r < last_row; ++r) {
+      ZeroColumns(&out, pad + r * cols, 0, family.first_col());
+      ZeroColumns(&out, pad + r * cols, family.end_col(cols), cols);
+    }
   }
 }
 
-// The two triangles of each cell in row r: upper (r, c) (r+1, c) (r, c+1) and
-// lower (r+1, c) (r+1, c+1) (r, c+1). Along the row each corner runs over consecutive nodes.
+// The two triangles of each cell in rows [band.begin, band.end), as one run of cells a (the
+// cell's top-left node): upper (a, a + cols, a + 1) and lower (a + cols, a + cols + 1, a + 1).
+// The last column has no cells; the run computes junk there and sets it back to 0.
 template <typename Real>
-void ForceEvaluator<Real>::WindRow(const ClothModel<Real>& model, const SimParams& params,
-                                   const ClothState<Real>& state, int r) {
+void ForceEvaluator<Real>::WindBand(const ClothModel<Real>& model, const SimParams& params,
+                                    const ClothState<Real>& state, RowBand band) {
+  const int cols = model.cols, pad = Padding(cols);
+  const int last_row = std::min(band.end, model.rows - 1);  // rows of cells
+  const int begin = band.begin * cols, end = std::min(last_row * cols, model.num_nodes() - cols - 1);
+  if (begin >= end) return;
+  for (int r = band.begin; r < last_row; ++r) {  // each cell's wind: its column's sample
+    std::copy(column_wind_x_.begin(), column_wind_x_.end(), wind_x_.begin() + r * cols);
+    std::copy(column_wind_y_.begin(), column_wind_y_.end(), wind_y_.begin() + r * cols);
+    std::copy(column_wind_z_.begin(), column_wind_z_.end(), wind_z_.begin() + r * cols);
+  }
   const Real share = Real(params.wind_coefficient / 6.0);
   const Real relative = params.relative_wind ? Real(1) : Real(0);
-  const int n = model.cols - 1, cell = r * n, top = model.index(r, 0), bottom = model.index(r + 1, 0);
   const struct {
     NodeForces<Real>* out;
-    int p, q, s;
-  } triangles[2] = {{&upper_, top, bottom, top + 1}, {&lower_, bottom, bottom + 1, top + 1}};
+    int p;     ///< the first corner's offset from the cell's top-left node
+    int q, s;  ///< the other corners' offsets from the first
+  } triangles[2] = {{&upper_, 0, cols, 1}, {&lower_, cols, 1, 1 - cols}};
   for (const auto& triangle : triangles) {
+    NodeForces<Real>& out = *triangle.out;
     WindKernel(state.x.data(), state.y.data(), state.z.data(), state.vx.data(), state.vy.data(),
-               state.vz.data(), wind_x_.data(), wind_y_.data(), wind_z_.data(), triangle.out->x.data() + cell,
-               triangle.out->y.data() + cell, triangle.out->z.data() + cell, triangle.p, triangle.q,
-               triangle.s, n, share, relative);
+               state.vz.data(), wind_x_.data(), wind_y_.data(), wind_z_.data(), out.x.data() + pad,
+               out.y.data() + pad, out.z.data() + pad, begin, end, triangle.p, triangle.q, triangle.s, share,
+               relative);
+    for (int r = band.begin; r < last_row; ++r) ZeroColumns(&out, pad + r * cols, cols - 1, cols);
   }
 }
 
-// Node row r sums, in a fixed order: gravity and friction, its springs (as first node +f, as
-// far node -f), then its up to six triangles' wind shares.
+// Every node of the band sums, in a fixed order: gravity and friction, its springs (as first node
+// +f, as far node -f), then its up to six triangles' wind shares.
 template <typename Real>
-void ForceEvaluator<Real>::GatherRow(const ClothModel<Real>& model, const SimParams& params,
-                                     const ClothState<Real>& state, int r, ForceTerms terms,
-                                     NodeForces<Real>* forces) const {
-  const int cols = model.cols, rows = model.rows, row = r * cols;
-  Real* fx = forces->x.data() + row;
-  Real* fy = forces->y.data() + row;
-  Real* fz = forces->z.data() + row;
-  const Real gravity = Real(params.gravity), friction = Real(AirFriction(params));
-  for (int c = 0; c < cols; ++c) {
-    const Real m = model.mass[row + c];
-    fx[c] = -friction * m * state.vx[row + c];
-    fy[c] = -m * gravity - friction * m * state.vy[row + c];
-    fz[c] = -friction * m * state.vz[row + c];
-  }
-  // Adds sign * g over columns [first, end) of this row, g read at index (source + c).
-  const auto add = [&](const NodeForces<Real>& g, int source, int first, int end, Real sign) {
-    AddKernel(fx + first, fy + first, fz + first, g.x.data() + source + first, g.y.data() + source + first,
-              g.z.data() + source + first, end - first, sign);
+void ForceEvaluator<Real>::GatherBand(const ClothModel<Real>& model, const SimParams& params,
+                                      const ClothState<Real>& state, RowBand band, ForceTerms terms,
+                                      NodeForces<Real>* forces) const {
+  const int cols = model.cols, first = band.begin * cols, count = (band.end - band.begin) * cols;
+  GatherSources<Real> sources;
+  int k = 0;
+  // The next source is g read at slot (node - shift): the band's first node's value is there.
+  const auto add = [&](const NodeForces<Real>& g, int shift) {
+    const size_t start = Padding(cols) + first - shift;
+    sources.x[k] = g.x.data() + start;
+    sources.y[k] = g.y.data() + start;
+    sources.z[k++] = g.z.data() + start;
   };
   for (size_t f = 0; terms == ForceTerms::kAll && f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];
-    const int first = family.first_col(), end = family.end_col(cols);
-    // as first nodes of springs (r, c) -> (r + dr, c + dc)
-    if (r + family.dr < rows) add(spring_[f], row, first, end, Real(1));
-    // as far nodes of springs starting at (r - dr, c - dc)
-    if (r - family.dr >= 0) {
-      add(spring_[f], row - family.dr * cols - family.dc, first + family.dc, end + family.dc, Real(-1));
-    }
+    add(spring_[f], 0);                             // as the first node: + f
+    add(spring_[f], family.dr * cols + family.dc);  // as the far node: - f
+  }
+  while (k < 2 * kMaxSpringFamilies) {  // families absent: zeros
+    sources.x[k] = sources.y[k] = sources.z[k] = zero_.data();
+    ++k;
   }
   // Triangles touching node (r, c): upper of cells (r, c) (r-1, c) (r, c-1);
-  // lower of cells (r-1, c) (r-1, c-1) (r, c-1). Cell (i, j) has index i (cols - 1) + j.
-  const int n = cols - 1;
-  const auto add_faces = [&](const NodeForces<Real>& faces, int cell_row, int shift) {
-    if (cell_row < 0 || cell_row >= rows - 1) return;
-    add(faces, cell_row * n - shift, shift, n + shift, Real(1));
-  };
-  add_faces(upper_, r, 0);
-  add_faces(upper_, r - 1, 0);
-  add_faces(upper_, r, 1);
-  add_faces(lower_, r - 1, 0);
-  add_faces(lower_, r - 1, 1);
-  add_faces(lower_, r, 1);
+  // lower of cells (r-1, c) (r-1, c-1) (r, c-1).
+  add(upper_, 0);
+  add(upper_, cols);
+  add(upper_, 1);
+  add(lower_, cols);
+  add(lower_, cols + 1);
+  add(lower_, 1);
+  GatherKernel(sources, model.mass.data() + first, state.vx.data() + first, state.vy.data() + first,
+               state.vz.data() + first, Real(params.gravity), Real(AirFriction(params)),
+               forces->x.data() + first, forces->y.data() + first, forces->z.data() + first, count);
 }
 
 template <typename Real>
@@ -194,19 +281,17 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
   forces->x.resize(model.num_nodes());
   forces->y.resize(model.num_nodes());
   forces->z.resize(model.num_nodes());
-  const int rows = model.rows;
-  // One fork per evaluation: springs and wind per row, a barrier, then each row gathers.
+  // One fork per evaluation: each thread computes the springs and faces of its band of rows, a
+  // barrier, then the band gathers, then after_row runs on each of its rows.
 #pragma omp parallel num_threads(params.threads) if (params.threads > 1)
   {
-#pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) {
-      if (terms == ForceTerms::kAll) SpringRow(model, state, r);
-      if (r + 1 < rows) WindRow(model, params, state, r);
-    }
-#pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) {
-      GatherRow(model, params, state, r, terms, forces);
-      if (after_row) after_row(r);
+    const RowBand band = ThreadBand(model.rows, omp_get_thread_num(), omp_get_num_threads());
+    if (terms == ForceTerms::kAll) SpringBand(model, state, band);
+    WindBand(model, params, state, band);
+#pragma omp barrier
+    GatherBand(model, params, state, band, terms, forces);
+    if (after_row) {
+      for (int r = band.begin; r < band.end; ++r) after_row(r);
     }
   }
 }

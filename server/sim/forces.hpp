@@ -24,6 +24,11 @@ struct NodeForces {
   std::vector<Real> x, y, z;
 };
 
+/// Grid rows [begin, end): one thread's share of an evaluation.
+struct RowBand {
+  int begin = 0, end = 0;
+};
+
 /// Which forces to sum: all of them, or all but the springs (for integrators that solve the
 /// springs themselves as constraints).
 enum class ForceTerms { kAll, kExternal };
@@ -32,9 +37,10 @@ template <typename Real>
 class ForceEvaluator {
  public:
   /// (state.x, state.v, t) => forces. Pinned nodes get forces too; integrators ignore them.
-  /// `after_row(r)`, if given, runs as soon as row r's forces are summed, on the same thread,
-  /// while they are still in cache: an update of row r's own nodes may go there (nothing reads
-  /// a node's position or velocity once its row's springs and faces are done).
+  /// `after_row(r)`, if given, runs on each row r once the thread that summed its forces has
+  /// summed its whole band of rows, while they are still in cache: an update of row r's own
+  /// nodes may go there (nothing reads positions or velocities once the springs and faces are
+  /// done).
   void Evaluate(const ClothModel<Real>& model, const SimParams& params, const WindField& wind,
                 const ClothState<Real>& state, double t, NodeForces<Real>* forces,
                 ForceTerms terms = ForceTerms::kAll, const std::function<void(int)>& after_row = {});
@@ -42,16 +48,20 @@ class ForceEvaluator {
  private:
   void Resize(const ClothModel<Real>& model);
   void SampleWind(const ClothModel<Real>& model, const WindField& wind, double t);
-  void SpringRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r);
-  void WindRow(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state, int r);
-  void GatherRow(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state, int r,
-                 ForceTerms terms, NodeForces<Real>* forces) const;
+  void SpringBand(const ClothModel<Real>& model, const ClothState<Real>& state, RowBand band);
+  void WindBand(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
+                RowBand band);
+  void GatherBand(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
+                  RowBand band, ForceTerms terms, NodeForces<Real>* forces) const;
 
-  // Scratch, sized to the model.
-  std::vector<NodeForces<Real>> spring_;        ///< per family, indexed by the spring's first node:
-                                                ///< force on that node (the far node gets minus it)
-  NodeForces<Real> upper_, lower_;              ///< per cell: a third of each triangle's wind force
-  std::vector<Real> wind_x_, wind_y_, wind_z_;  ///< m/s, wind per cell column
+  // Scratch, laid out on the node grid (forces.cpp says how).
+  std::vector<int> layout_;               ///< cols, rows, then (dr, dc) per family, of the scratch
+  std::vector<NodeForces<Real>> spring_;  ///< per family, at the spring's first node: the
+                                          ///< force on that node (the far node gets minus it)
+  NodeForces<Real> upper_, lower_;        ///< per cell: a third of each triangle's wind force
+  std::vector<Real> zero_;                ///< zeros, for families a model lacks
+  std::vector<Real> column_wind_x_, column_wind_y_, column_wind_z_;  ///< m/s, wind per cell column
+  std::vector<Real> wind_x_, wind_y_, wind_z_;                       ///< m/s, wind per cell, on the node grid
 };
 
 /// Air friction as the force law applies it: the seed's scheme replaces it by -mu F.
