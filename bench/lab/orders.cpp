@@ -19,8 +19,6 @@ std::string Theory(sim::IntegratorKind kind) {
       return "2";
     case sim::IntegratorKind::kRk4:
       return "4";
-    case sim::IntegratorKind::kProjectiveDynamics:
-      return "- (damping differs)";
     default:
       return "1";
   }

@@ -5,12 +5,16 @@
 //   M (x' - x - h v) / h^2 = f_s(x') + f_ext - friction M v' - C v',   v' = (x' - x) / h
 // f_s the springs' elastic forces k (|d| - L) u as in forces.hpp; f_ext gravity and wind, both at
 // (x, v, t) (relative wind sees v), held through the step; friction at the end of the step (as
-// forces.hpp's law, but implicit). C is an isotropic damping Laplacian: each spring pulls its ends
-// with c (v'_b - v'_a), where forces.hpp has c ((v_b - v_a) . u) u. So relative motion across a
-// spring (bending waves, a spring's rotation) is damped as much as its stretching, more than the
-// force law damps it; with c = 0 the two agree. Converged, the step is backward Euler on that
-// system; with params.solver_iterations iterations it is the iterate after that many, which
-// leaves stiff springs somewhat softer than k (the method's known artefact).
+// forces.hpp's law, but implicit). Spring damping, forces.hpp's c ((v_b - v_a) . u) u, is split
+// so that the matrix stays constant: C is an isotropic damping Laplacian (each spring pulls its
+// ends with c (v'_b - v'_a), implicit), and f_ext also carries the difference between the law
+// and it at the start of the step, -c (dv - (dv . u) u) with dv = v_b - v_a (explicit). The
+// explicit part only removes damping across springs, C_perp <= C, so the split is as stable as
+// the implicit damping alone: (M + h C) v' = (M + h C_perp) v has all eigenvalues in (0, 1].
+// So the method steps the same ODE as the other integrators, to first order in h. Converged, the
+// step is backward Euler on the springs; with params.solver_iterations iterations it is the
+// iterate after that many, which leaves stiff springs somewhat softer than k (the method's known
+// artefact).
 //
 // One substep, in displacements dx = x' - x (pinned nodes have dx = 0):
 //   q = x + h v, the first iterate
@@ -60,6 +64,26 @@ void SpringTargetKernel(const Real* __restrict x, const Real* __restrict y, cons
   }
 }
 
+/// Springs a -> a + offset for a in [begin, end): t = -c (dv - (dv . d) d / |d|^2), dv = v_b - v_a,
+/// the force on a that turns the isotropic damping c dv, which the solve applies, into the spring
+/// law's c (dv . u) u (its far node gets -t).
+template <typename Real>
+void TransverseDampingKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
+                             const Real* __restrict vx, const Real* __restrict vy, const Real* __restrict vz,
+                             Real* __restrict tx, Real* __restrict ty, Real* __restrict tz, int begin,
+                             int end, int offset, Real damping) {
+  for (int a = begin; a < end; ++a) {
+    const int b = a + offset;
+    const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
+    const Real dvx = vx[b] - vx[a], dvy = vy[b] - vy[a], dvz = vz[b] - vz[a];
+    const Real length_squared = std::max(dx * dx + dy * dy + dz * dz, Real(kShortest * kShortest));
+    const Real along = (dvx * dx + dvy * dy + dvz * dz) / length_squared;
+    tx[a] = -damping * (dvx - along * dx);
+    ty[a] = -damping * (dvy - along * dy);
+    tz[a] = -damping * (dvz - along * dz);
+  }
+}
+
 /// out[a] += sign t[a + shift] for a in [begin, end).
 template <typename Real>
 void GatherKernel(const Real* __restrict tx, const Real* __restrict ty, const Real* __restrict tz,
@@ -80,6 +104,7 @@ class ProjectiveDynamics : public Integrator<Real> {
     const SimParams& params = context.params;
     laplacian_.Prepare(model, h, AirFriction(params));
     ExternalForces(context, *state);
+    AddDampingCorrection(model, params, *state);
     Predict(model, params, *state, Real(h));
     for (int i = 0; i < params.solver_iterations; ++i) {
       if (i > 0) MoveIterate(model, *state, params.threads);
@@ -104,6 +129,41 @@ class ProjectiveDynamics : public Integrator<Real> {
     context.evaluator.Evaluate(external_model_, external_params_, context.wind, state, state.time, &forces_);
   }
 
+  /// Adds the explicit part of the spring damping to f_ext (see the top of this file): every
+  /// spring's t into targets_ (free until the iterations start), then each node sums its own.
+  void AddDampingCorrection(const ClothModel<Real>& model, const SimParams& params,
+                            const ClothState<Real>& state) {
+    const int rows = model.rows;
+    targets_.resize(model.families.size());
+    for (NodeVectors<Real>& family : targets_) family.Resize(model.num_nodes());
+#pragma omp parallel num_threads(params.threads) if (params.threads > 1)
+    {
+#pragma omp for schedule(static)
+      for (int r = 0; r < rows; ++r) TransverseDampingRow(model, state, r);
+#pragma omp for schedule(static)
+      for (int r = 0; r < rows; ++r) {
+        ForEachSpringRun(model, r, [&](const SpringRun& run) {
+          const NodeVectors<Real>& t = targets_[run.family];
+          GatherKernel(t.x.data(), t.y.data(), t.z.data(), forces_.x.data(), forces_.y.data(),
+                       forces_.z.data(), run.begin, run.end, run.spring_shift,
+                       run.first ? Real(1) : Real(-1));
+        });
+      }
+    }
+  }
+
+  void TransverseDampingRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r) {
+    for (size_t f = 0; f < model.families.size(); ++f) {
+      const SpringFamily<Real>& family = model.families[f];
+      if (r + family.dr >= model.rows) continue;
+      NodeVectors<Real>& t = targets_[f];
+      TransverseDampingKernel(state.x.data(), state.y.data(), state.z.data(), state.vx.data(),
+                              state.vy.data(), state.vz.data(), t.x.data(), t.y.data(), t.z.data(),
+                              model.index(r, family.first_col()), model.index(r, family.end_col(model.cols)),
+                              family.dr * model.cols + family.dc, family.damping);
+    }
+  }
+
   /// The first iterate x + h v, and the constant part of the right-hand side, h M v + h^2 f_ext
   /// (0 at pinned nodes).
   void Predict(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
@@ -112,8 +172,6 @@ class ProjectiveDynamics : public Integrator<Real> {
     iterate_.Resize(n);
     momentum_.Resize(n);
     rhs_.Resize(n);
-    targets_.resize(model.families.size());
-    for (NodeVectors<Real>& family : targets_) family.Resize(n);
 #pragma omp parallel for schedule(static) num_threads(params.threads) if (params.threads > 1)
     for (int i = 0; i < n; ++i) {
       const Real free = model.pinned(i) ? Real(0) : Real(1);

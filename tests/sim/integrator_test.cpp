@@ -56,14 +56,16 @@ TEST_P(OrderTest, ErrorFallsAtTheMethodsOrder) {
   EXPECT_GT(std::log2(errors[0] / errors[1]), GetParam().order - 0.5);
 }
 
-// XPBD at a fixed iteration count approximates implicit Euler: first order too.
+// XPBD and projective dynamics at a fixed iteration count approximate implicit Euler: first
+// order too (projective dynamics with its damping split, explicit across springs).
 INSTANTIATE_TEST_SUITE_P(All, OrderTest,
                          ::testing::Values(OrderCase{IntegratorKind::kExplicitEuler, 1},
                                            OrderCase{IntegratorKind::kSymplecticEuler, 1},
                                            OrderCase{IntegratorKind::kVelocityVerlet, 2},
                                            OrderCase{IntegratorKind::kRk4, 4},
                                            OrderCase{IntegratorKind::kXpbd, 1},
-                                           OrderCase{IntegratorKind::kImplicitEuler, 1}),
+                                           OrderCase{IntegratorKind::kImplicitEuler, 1},
+                                           OrderCase{IntegratorKind::kProjectiveDynamics, 1}),
                          [](const auto& info) { return IntegratorName(info.param.kind); });
 
 class EveryIntegrator : public ::testing::TestWithParam<IntegratorKind> {};
