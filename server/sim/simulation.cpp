@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace flagsim::sim {
 namespace {
@@ -65,6 +66,31 @@ Simulation<Real>::Simulation(const SimParams& params, const WindSettings& wind, 
   ChooseIntegrator();
   state_ = RestState(model_);
   Checkpoint();
+}
+
+template <typename Real>
+Simulation<Real>::Simulation(const SimulationSnapshot<Real>& snapshot)
+    : params_(snapshot.params),
+      state_(snapshot.state),
+      wind_(snapshot.wind),
+      guard_factor_(snapshot.guard_factor),
+      recoveries_(snapshot.recoveries),
+      good_steps_(snapshot.good_steps),
+      sleeping_(snapshot.sleeping) {
+  model_ = BuildClothModel<Real>(params_);
+  if (state_.num_nodes() != model_.num_nodes())
+    throw std::invalid_argument("snapshot: the state has " + std::to_string(state_.num_nodes()) +
+                                " nodes, its parameters make " + std::to_string(model_.num_nodes()));
+  ChooseIntegrator();
+  Checkpoint();
+}
+
+template <typename Real>
+SimulationSnapshot<Real> Simulation<Real>::CleanSnapshot() {
+  integrator_->Reset();
+  Checkpoint();
+  calm_steps_ = 0;
+  return {params_, wind_.State(), state_, guard_factor_, good_steps_, recoveries_, sleeping_};
 }
 
 template <typename Real>

@@ -37,6 +37,19 @@ struct GuardEvent {
   std::string Describe() const;
 };
 
+/// A simulation at a clean point (Simulation::CleanSnapshot): all a step depends on, so that a
+/// simulation built from it continues bit for bit as the original does.
+template <typename Real>
+struct SimulationSnapshot {
+  SimParams params;  ///< as in use, an integrator the guard chose included
+  WindFieldState wind;
+  ClothState<Real> state;
+  int guard_factor = 1;    ///< the guard's multiple of the substeps
+  int64_t good_steps = 0;  ///< steps since the guard last acted
+  int64_t recoveries = 0;
+  bool sleeping = false;
+};
+
 /// Substeps per step that `params` asks for: its `substeps` or, when that is 0, enough to stay
 /// within the integrator's stability limit on the grid's frequency bound (with kSafety).
 int SubstepsFor(const SimParams& params);
@@ -58,6 +71,15 @@ class Simulation {
   static constexpr double kSleepSpeed = 1e-2;     ///< m/s: and none is faster at the end
 
   Simulation(const SimParams& params, const WindSettings& wind, uint64_t seed = 1);
+  /// Resumes from a snapshot: the next steps are those the snapshot's simulation takes.
+  explicit Simulation(const SimulationSnapshot<Real>& snapshot);
+
+  /// Makes this step boundary a clean point and returns its snapshot: the integrator forgets
+  /// what it carries between substeps, the guard takes its checkpoint, the watch for sleep starts
+  /// over. What follows depends on the snapshot alone, so a replay that resumes from it and the
+  /// running simulation take the same steps. (Taking one is part of a session's history: a run
+  /// that takes snapshots at other steps may differ in the last bits.)
+  SimulationSnapshot<Real> CleanSnapshot();
 
   /// Advances one step of params().dt.
   void Step();

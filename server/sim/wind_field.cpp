@@ -32,6 +32,9 @@ double ValueNoise(uint64_t seed, double u) {
 WindField::WindField(const WindSettings& settings, uint64_t seed)
     : from_(settings), to_(settings), seed_(seed) {}
 
+WindField::WindField(const WindFieldState& state)
+    : from_(state.from), to_(state.to), ramp_start_(state.ramp_start), seed_(state.seed) {}
+
 void WindField::Set(const WindSettings& settings, double now) {
   from_.velocity = Mean(now);
   from_.gust = Gust(now);

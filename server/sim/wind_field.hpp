@@ -15,9 +15,18 @@ struct WindSettings {
   double ramp_time = 0.0;        ///< s, simulated time to reach this setting from the last one
 };
 
+/// Everything a WindField is, for checkpoints: the ramp it is on and its gusts' seed.
+struct WindFieldState {
+  WindSettings from;      ///< the wind the ramp started from
+  WindSettings to;        ///< the wind it goes to
+  double ramp_start = 0;  ///< s, simulated time the ramp began
+  uint64_t seed = 1;      ///< gust noise
+};
+
 class WindField {
  public:
   explicit WindField(const WindSettings& settings = {}, uint64_t seed = 1);
+  explicit WindField(const WindFieldState& state);
 
   /// From time `now`, move linearly from the current wind to `settings` over its ramp_time.
   void Set(const WindSettings& settings, double now);
@@ -33,6 +42,7 @@ class WindField {
 
   const WindSettings& target() const { return to_; }
   uint64_t seed() const { return seed_; }
+  WindFieldState State() const { return {from_, to_, ramp_start_, seed_}; }
 
   static constexpr double kGustLength = 1.5;  ///< m, correlation length of gusts
 

@@ -210,5 +210,75 @@ TEST(Simulation, TheGuardKeepsStableIntegratorsSoundAtTheLargestStep) {
   }
 }
 
+// A simulation resumed from a clean snapshot takes the original's steps bit for bit, whatever
+// its integrator carries between substeps, across a wind ramp and a parameter change.
+TEST(Simulation, ResumesFromACleanSnapshotBitForBit) {
+  for (const IntegratorKind kind :
+       {IntegratorKind::kSymplecticEuler, IntegratorKind::kVelocityVerlet, IntegratorKind::kRk4,
+        IntegratorKind::kXpbd, IntegratorKind::kImplicitEuler, IntegratorKind::kProjectiveDynamics}) {
+    SimParams params;
+    params.cols = 16;
+    params.rows = 12;
+    params.integrator = kind;
+    Simulation<float> original(params, WindSettings{{8.0, 0.0, 2.0}, 0.3, 0.0}, 7);
+    for (int i = 0; i < 30; ++i) original.Step();
+    original.SetWind(WindSettings{{2.0, 1.0, 6.0}, 0.5, 0.2});  // ramps over 0.2 s: past the snapshot
+    for (int i = 0; i < 20; ++i) original.Step();
+    Simulation<float> resumed(original.CleanSnapshot());
+    params.stiffness = 3000;
+    for (int i = 0; i < 200; ++i) {
+      if (i == 50) {
+        original.SetParams(params);
+        resumed.SetParams(params);
+      }
+      original.Step();
+      resumed.Step();
+    }
+    EXPECT_EQ(resumed.Hash(), original.Hash()) << IntegratorName(kind);
+    EXPECT_EQ(resumed.state().step, original.state().step);
+    EXPECT_EQ(resumed.state().time, original.state().time);
+  }
+}
+
+// The guard's state goes with the snapshot: resumed after a recovery, the simulation keeps the
+// raised substeps and the fallback integrator the original has.
+TEST(Simulation, ASnapshotCarriesTheGuardsState) {
+  SimParams params;
+  params.stiffness = 1e5;
+  params.substeps = 1;
+  Simulation<float> original(params, WindSettings{{12.0, 0.0, 3.0}, 0.3, 0.0});
+  while (original.recoveries() == 0) original.Step();
+  Simulation<float> resumed(original.CleanSnapshot());
+  EXPECT_EQ(resumed.substeps(), original.substeps());
+  EXPECT_EQ(resumed.params().integrator, original.params().integrator);
+  EXPECT_EQ(resumed.recoveries(), original.recoveries());
+  for (int i = 0; i < 100; ++i) {
+    original.Step();
+    resumed.Step();
+  }
+  EXPECT_EQ(resumed.Hash(), original.Hash());
+}
+
+// A sleeping flag resumes asleep.
+TEST(Simulation, ASnapshotCarriesSleep) {
+  SimParams params;
+  params.cols = 8;
+  params.rows = 6;
+  params.friction = 5.0;
+  Simulation<float> original(params, testing::NoWind());
+  for (int i = 0; i < 20000 && !original.sleeping(); ++i) original.Step();
+  ASSERT_TRUE(original.sleeping());
+  Simulation<float> resumed(original.CleanSnapshot());
+  EXPECT_TRUE(resumed.sleeping());
+}
+
+TEST(Simulation, ASnapshotWhoseStateDoesNotFitItsGridIsRefused) {
+  SimParams params;
+  Simulation<float> original(params, Breeze());
+  SimulationSnapshot<float> snapshot = original.CleanSnapshot();
+  snapshot.params.cols = 40;
+  EXPECT_THROW(Simulation<float>{snapshot}, std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace flagsim::sim
