@@ -50,11 +50,11 @@ int NothingToExport(const ExportRequest& request, const Channels& channels, cons
 }
 
 std::string Summary(const ExportRequest& request, const FrameOutput& output, const LogFrames& frames,
-                    double frame_rate) {
+                    bool sizes_vary, double frame_rate) {
   char line[512];
-  std::snprintf(line, sizeof(line), "%s: %lld frames, %d x %d px, %.6g frames per second of simulated time",
-                request.output.c_str(), static_cast<long long>(output.frames()), frames.width(),
-                frames.height(), frame_rate);
+  std::snprintf(line, sizeof(line), "%s: %lld frames, %s%d x %d px, %.6g frames per second of simulated time",
+                request.output.c_str(), static_cast<long long>(output.frames()),
+                sizes_vary ? "the last " : "", frames.width(), frames.height(), frame_rate);
   return line;
 }
 
@@ -85,7 +85,9 @@ int Export(const Globals& globals, const ExportRequest& request) {
 
   // Frames into the output until the log ends, the output fails or the user interrupts.
   ProgressBar bar;
+  bool sizes_vary = false;
   while (problem.empty() && !g_stop.load() && frames->Next()) {
+    sizes_vary |= frames->width() != survey.width || frames->height() != survey.height;
     problem = output->Write(frames->image().data(), frames->width(), frames->height());
     const EventLogReader& reader = frames->reader();
     bar.Update(reader.size() > 0 ? double(reader.offset()) / double(reader.size()) : 1.0,
@@ -93,7 +95,7 @@ int Export(const Globals& globals, const ExportRequest& request) {
   }
   const std::string finished = output->Finish();
   if (problem.empty()) problem = finished;
-  bar.Finish(output->frames() > 0 ? Summary(request, *output, *frames, rate)
+  bar.Finish(output->frames() > 0 ? Summary(request, *output, *frames, sizes_vary, rate)
                                   : "flagctl export: no frame written");
 
   ReportSkips(frames->report());

@@ -85,14 +85,15 @@ int main(int argc, char** argv) {
           "frames per second of the video (default: the log's frame rate, from its PARAMS or FRAME times)")
       ->check(CLI::PositiveNumber);
   export_command->footer(
-      "Reads the TILE and FRAME events with the prefix (--prefix) and assembles them as a client would; "
-      "every frame written is checked against the server's frame hash. A log recorded mid-stream starts "
-      "at its first keyframe (earlier frames are skipped, with a note). The log's timing is kept: a frame "
-      "whose tiles were lost (its hash does not check out), or one the server skipped, repeats the last "
-      "whole frame, so the output still has one image per frame time. A log cut short (a recorder killed "
-      "mid-write) is exported up to its last whole event, with a message naming the byte and event where "
-      "it stops. Videos are made by ffmpeg (Debian's ffmpeg package). Exit codes: 0 ok (also for a log cut "
-      "short), 1 ffmpeg missing or failed or a file not written, 2 usage, 5 no complete frame in the log.");
+      "Reads the TILE and FRAME events with the prefix (--prefix) and assembles them as a client\n"
+      "would; every frame written has the server's frame hash. A log recorded mid-stream starts at its\n"
+      "first keyframe (earlier frames are skipped, with a note). The log's timing is kept: a frame whose\n"
+      "tiles were lost (its hash does not check out), and a frame time the server skipped, repeat the\n"
+      "last whole frame, so there is one image per frame time. A log cut short (a recorder killed\n"
+      "mid-write) is exported up to its last whole event, with a message naming the byte and event where\n"
+      "it stops. Videos are made by ffmpeg (Debian's ffmpeg package) and keep the first frame's size.\n"
+      "Exit codes: 0 ok (also for a log cut short), 1 ffmpeg missing or failed or a file not written,\n"
+      "2 usage, 5 no complete frame in the log.");
 
   std::string snapshot_path;
   CLI::App* snapshot = app.add_subcommand("snapshot", "ask for a full frame and write it as a PNG");
