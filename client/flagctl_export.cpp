@@ -50,11 +50,12 @@ int NothingToExport(const ExportRequest& request, const Channels& channels, cons
 }
 
 std::string Summary(const ExportRequest& request, const FrameOutput& output, const LogFrames& frames,
-                    bool sizes_vary, double frame_rate) {
+                    bool sizes_vary, double frame_rate, const std::string& rate_source) {
   char line[512];
-  std::snprintf(line, sizeof(line), "%s: %lld frames, %s%d x %d px, %.6g frames per second of simulated time",
+  std::snprintf(line, sizeof(line), "%s: %lld frames, %s%d x %d px, %.6g frames per second (%s)",
                 request.output.c_str(), static_cast<long long>(output.frames()),
-                sizes_vary ? "the last " : "", frames.width(), frames.height(), frame_rate);
+                sizes_vary ? "the last " : "", frames.width(), frames.height(), frame_rate,
+                rate_source.c_str());
   return line;
 }
 
@@ -81,6 +82,9 @@ int Export(const Globals& globals, const ExportRequest& request) {
   const double rate = request.frame_rate > 0  ? request.frame_rate
                       : survey.frame_rate > 0 ? survey.frame_rate
                                               : kFallbackFrameRate;
+  const std::string rate_source = request.frame_rate > 0  ? "--fps"
+                                  : survey.frame_rate > 0 ? "the log's " + survey.frame_rate_source
+                                                          : "the log tells none";
   const std::unique_ptr<FrameOutput> output = MakeFrameOutput(*kind, request.output, rate);
 
   // Frames into the output until the log ends, the output fails or the user interrupts.
@@ -95,7 +99,7 @@ int Export(const Globals& globals, const ExportRequest& request) {
   }
   const std::string finished = output->Finish();
   if (problem.empty()) problem = finished;
-  bar.Finish(output->frames() > 0 ? Summary(request, *output, *frames, sizes_vary, rate)
+  bar.Finish(output->frames() > 0 ? Summary(request, *output, *frames, sizes_vary, rate, rate_source)
                                   : "flagctl export: no frame written");
 
   ReportSkips(frames->report());
