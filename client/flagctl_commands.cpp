@@ -1,5 +1,6 @@
 #include "flagctl_commands.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <iostream>
@@ -175,43 +176,62 @@ int Watch(const Globals& globals, double duration) {
   return kOk;
 }
 
-/// Asks for a keyframe, assembles the tiles, checks the frame hash, writes a PNG.
+/// Asks for a keyframe, assembles the tiles, checks the frame hash, writes a PNG. Frames count
+/// once the request is answered; if no answer comes within kRefreshAnswerWait (nobody takes
+/// commands: lcm-logplayer playing a log, say), any whole frame of the stream counts, and the
+/// request is sent again now and then in case a server is there after all.
 int Snapshot(const Globals& globals, const std::string& path) {
+  constexpr double kRefreshAnswerWait = 1.0;  // s
   Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout);
+  CommandClient client(link.bus, link.channels, std::min(globals.timeout, kRefreshAnswerWait));
   TileAssembler assembler;
+  bool counting = false;  // frames count: after our request was answered, or with nobody answering
   bool complete = false, keyframe_incomplete = false;
-  bool waiting = false;  // for frames after our request
+  // The whole frame, copied as it completes: the assembler goes on with later frames.
+  std::vector<uint8_t> picture;
+  int width = 0, height = 0;
+  int64_t frame_id = -1;
   SubscribeDecoded<tile_t>(
       link.bus, link.channels.tile, [&](const tile_t& tile) { assembler.AddTile(tile); }, nullptr, 10000);
   SubscribeDecoded<frame_t>(
       link.bus, link.channels.frame,
       [&](const frame_t& manifest) {
-        const auto result = assembler.AddManifest(manifest);
-        if (!waiting) return;
-        complete |= result == TileAssembler::FrameResult::kComplete;
-        keyframe_incomplete |= manifest.keyframe && result != TileAssembler::FrameResult::kComplete;
+        const bool whole = assembler.AddManifest(manifest) == TileAssembler::FrameResult::kComplete;
+        if (!counting || complete) return;
+        if (whole) {
+          picture = assembler.image();
+          width = assembler.width();
+          height = assembler.height();
+          frame_id = manifest.frame_id;
+        }
+        complete = whole;
+        keyframe_incomplete |= manifest.keyframe && !whole;
       },
       nullptr, 1000);
   const double start = MonotonicSeconds(), deadline = start + globals.timeout;
-  while (!complete) {
+  bool answered = false;
+  while (!complete && MonotonicSeconds() < deadline) {
     // A keyframe that arrived with tiles missing calls for another request (a new id).
     keyframe_incomplete = false;
     const CommandOutcome outcome = client.Send(link.channels.refresh, refresh_request_t{});
-    if (outcome.result != CommandOutcome::kAccepted) return Report(link, outcome);
-    waiting = true;
-    const double left = deadline - MonotonicSeconds();
-    if (left <= 0 || !HandleUntil(link.bus, left, [&] { return complete || keyframe_incomplete; })) break;
+    if (outcome.result == CommandOutcome::kRejected) return Report(link, outcome);
+    answered |= outcome.result == CommandOutcome::kAccepted;
+    counting = true;
+    const double wait =
+        std::min(deadline - MonotonicSeconds(), answered ? globals.timeout : kRefreshAnswerWait);
+    HandleUntil(link.bus, wait, [&] { return complete || keyframe_incomplete; });
   }
   if (!complete) return link.NoAnswer("complete frame");
-  const std::string problem = WritePng(path, assembler.width(), assembler.height(), assembler.image().data());
+  const std::string problem = WritePng(path, width, height, picture.data());
   if (!problem.empty()) {
     std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
     return 1;
   }
-  std::printf("%s: %d x %d, frame %lld, complete %.0f ms after the request\n", path.c_str(),
-              assembler.width(), assembler.height(), static_cast<long long>(assembler.last_complete_frame()),
-              1000 * (MonotonicSeconds() - start));
+  std::printf("%s: %d x %d, frame %lld, complete %.0f ms after the request%s\n", path.c_str(), width, height,
+              static_cast<long long>(frame_id), 1000 * (MonotonicSeconds() - start),
+              answered
+                  ? ""
+                  : " (no server answered it: a stream that takes no commands, such as a log playing back)");
   return kOk;
 }
 

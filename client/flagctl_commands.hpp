@@ -1,6 +1,6 @@
 // What each flagctl subcommand does, once its command line is parsed (flagctl_main.cpp).
-// Each returns the process's exit code: 0 ok, 2 usage, 3 rejected by the server (its reason
-// printed), 4 no answer within the timeout.
+// Each returns the process's exit code: 0 ok, 1 failed (a file, ffmpeg), 2 usage, 3 rejected
+// by the server (its reason printed), 4 no answer within the timeout, 5 nothing to export.
 #pragma once
 
 #include <atomic>
@@ -12,7 +12,7 @@
 
 namespace flagsim {
 
-enum ExitCode { kOk = 0, kUsage = 2, kRejected = 3, kNoAnswer = 4 };
+enum ExitCode { kOk = 0, kFailed = 1, kUsage = 2, kRejected = 3, kNoAnswer = 4, kNothingToExport = 5 };
 
 /// Set by SIGINT / SIGTERM: watch and record stop and report.
 extern std::atomic<bool> g_stop;
@@ -37,5 +37,13 @@ int Snapshot(const Globals& globals, const std::string& path);
 int Camera(const Globals& globals, camera_command_t command);
 /// Every channel with the prefix into an LCM log until `duration` s (0: until interrupted).
 int Record(const Globals& globals, const std::string& path, double duration);
+
+struct ExportRequest {
+  std::string log_path;   ///< an LCM event log
+  std::string output;     ///< DIR/ (PNG frames), NAME.mp4 or NAME.gif
+  double frame_rate = 0;  ///< Hz of the video; 0: the log's own
+};
+/// The frames in a log, assembled and hash-checked, into PNGs or a video (flagctl_export.cpp).
+int Export(const Globals& globals, const ExportRequest& request);
 
 }  // namespace flagsim

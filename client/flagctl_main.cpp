@@ -1,7 +1,9 @@
 // flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, refresh), reads
-// its streams (params, status, watch, snapshot) and records sessions (record). This file is the
-// command line; flagctl_commands.cpp does the work.
-// Exit codes: 0 ok, 2 usage, 3 rejected by the server (its reason printed), 4 no answer.
+// its streams (params, status, watch, snapshot), records sessions (record) and turns logs into
+// pictures (export). This file is the command line; flagctl_commands.cpp and
+// flagctl_export.cpp do the work.
+// Exit codes: 0 ok, 1 failed, 2 usage, 3 rejected by the server (its reason printed), 4 no
+// answer, 5 nothing to export.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <csignal>
@@ -21,7 +23,8 @@ int main(int argc, char** argv) {
   Globals globals;
   CLI::App app{
       "flagctl: steer and watch a flagd server over LCM\n"
-      "exit codes: 0 ok, 2 usage, 3 rejected by the server, 4 no answer within --timeout"};
+      "exit codes: 0 ok, 1 failed (a file, ffmpeg), 2 usage, 3 rejected by the server, 4 no answer within "
+      "--timeout, 5 nothing to export"};
   app.fallthrough();  // global options may follow the subcommand
   app.require_subcommand(1);
   app.add_option("--lcm-url", globals.lcm_url,
@@ -64,6 +67,33 @@ int main(int argc, char** argv) {
   record->add_option("-o,--output", record_path, "the log file to write")->required();
   record->add_option("--duration", record_duration, "seconds to record (0: until interrupted)")
       ->check(CLI::NonNegativeNumber);
+
+  ExportRequest export_request;
+  CLI::App* export_command =
+      app.add_subcommand("export", "turn the frames in an LCM log into PNGs, an MP4 or a GIF");
+  export_command
+      ->add_option("log", export_request.log_path, "the log (flagctl record, flagd render, lcm-logger)")
+      ->required();
+  export_command
+      ->add_option(
+          "-o,--output", export_request.output,
+          "DIR/ or an existing directory: PNG frames frame_%06d.png; NAME.mp4: H.264 video; NAME.gif")
+      ->required();
+  export_command
+      ->add_option(
+          "--fps", export_request.frame_rate,
+          "frames per second of the video (default: the log's frame rate, from its PARAMS or FRAME times)")
+      ->check(CLI::PositiveNumber);
+  export_command->footer(
+      "Reads the TILE and FRAME events with the prefix (--prefix) and assembles them as a client\n"
+      "would; every frame written has the server's frame hash. A log recorded mid-stream starts at its\n"
+      "first keyframe (earlier frames are skipped, with a note). The log's timing is kept: a frame whose\n"
+      "tiles were lost (its hash does not check out), and a frame time the server skipped, repeat the\n"
+      "last whole frame, so there is one image per frame time. A log cut short (a recorder killed\n"
+      "mid-write) is exported up to its last whole event, with a message naming the byte and event where\n"
+      "it stops. Videos are made by ffmpeg (Debian's ffmpeg package) and keep the first frame's size.\n"
+      "Exit codes: 0 ok (also for a log cut short), 1 ffmpeg missing or failed or a file not written,\n"
+      "2 usage, 5 no complete frame in the log.");
 
   std::string snapshot_path;
   CLI::App* snapshot = app.add_subcommand("snapshot", "ask for a full frame and write it as a PNG");
@@ -132,6 +162,7 @@ int main(int argc, char** argv) {
     if (command == "record") return Record(globals, record_path, record_duration);
     if (command == "snapshot") return Snapshot(globals, snapshot_path);
     if (command == "camera") return Camera(globals, camera_command);
+    if (command == "export") return Export(globals, export_request);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());
     return 1;

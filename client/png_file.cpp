@@ -3,6 +3,7 @@
 #include <png.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 namespace flagsim {
@@ -36,6 +37,12 @@ std::string WritePng(const std::string& path, int width, int height, const uint8
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   return std::fflush(file.get()) == 0 ? "" : "writing " + path + " failed";
+}
+
+std::string PngFramePath(const std::string& directory, int64_t index) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "frame_%06lld.png", static_cast<long long>(index));
+  return (std::filesystem::path(directory) / name).string();
 }
 
 std::string ReadPng(const std::string& path, int* width, int* height, std::vector<uint8_t>* rgb) {

@@ -10,6 +10,10 @@ namespace flagsim {
 /// Writes width x height RGB8 pixels (rows top to bottom) to `path`; "" or what went wrong.
 std::string WritePng(const std::string& path, int width, int height, const uint8_t* rgb);
 
+/// "DIR/frame_000042.png": frame `index` of a numbered sequence in `directory`, as flagd render
+/// and flagctl export write them.
+std::string PngFramePath(const std::string& directory, int64_t index);
+
 /// Reads an 8-bit RGB PNG; "" or what went wrong.
 std::string ReadPng(const std::string& path, int* width, int* height, std::vector<uint8_t>* rgb);
 

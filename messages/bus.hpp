@@ -1,7 +1,8 @@
 // The transport seam: an LCM instance built from a URL, publishing encoded messages and
 // delivering raw bytes (decode them with CheckedDecode). Unit tests build it on memq://.
 // One thread subscribes, calls Handle() and uses the typed Publish; Publish of raw bytes may
-// also be called from other threads (LCM serialises its sends).
+// also be called from other threads (LCM serialises its sends). A Bus is a Publisher (the
+// other is an event log), so the paced publisher can feed either.
 #pragma once
 
 #include <atomic>
@@ -12,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "publisher.hpp"
+
 namespace lcm {
 class LCM;
 class ReceiveBuffer;
@@ -19,7 +22,7 @@ class ReceiveBuffer;
 
 namespace flagsim {
 
-class Bus {
+class Bus : public Publisher {
  public:
   /// Raw bytes of one message on `channel`, exactly as received.
   using Handler = std::function<void(const std::string& channel, const uint8_t* data, size_t size)>;
@@ -27,7 +30,7 @@ class Bus {
   /// `url` "" means LCM_DEFAULT_URL, else LCM's default (udpm://239.255.76.67:7667?ttl=0).
   /// Throws std::runtime_error naming the URL when LCM cannot start on it.
   explicit Bus(const std::string& url);
-  ~Bus();
+  ~Bus() override;
   Bus(const Bus&) = delete;
   Bus& operator=(const Bus&) = delete;
 
@@ -37,7 +40,7 @@ class Bus {
   /// bursts with its default one); other URLs come back unchanged.
   static std::string WithReceiveBuffer(const std::string& url, int64_t bytes);
 
-  void Publish(const std::string& channel, const uint8_t* data, size_t size);
+  void Publish(const std::string& channel, const uint8_t* data, size_t size) override;
 
   template <class Message>
   void Publish(const std::string& channel, const Message& message) {

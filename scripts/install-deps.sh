@@ -16,6 +16,7 @@ packages=(
   libspdlog-dev                                  # server logging
   libzstd-dev libxxhash-dev                      # tile compression, image and state hashes
   libpng-dev                                     # snapshots and exported frames
+  ffmpeg                                         # flagctl export's MP4 and GIF encoder; ffprobe for its test
   libgtest-dev libbenchmark-dev                  # tests and benchmarks
   iproute2 nftables util-linux                   # private network namespaces for the udpm tests
 )

@@ -1,18 +1,20 @@
 // flagd: the flag simulation server. Steps the flag in real time (or as fast as it can), draws
 // and streams its frames as tiles, publishes STATE, PARAMS and STATUS, and takes WIND, PARAM,
-// CAMERA and REFRESH commands over LCM.
+// CAMERA and REFRESH commands over LCM. `flagd render` runs a scene offline instead, into an
+// LCM log and PNG frames (render_command.hpp).
 #include <spdlog/spdlog.h>
+#include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
-#include <sys/resource.h>
-
 #include <csignal>
+#include <cstdio>
 #include <iostream>
 
 #include "bus.hpp"
 #include "channels.hpp"
 #include "parameter_table.hpp"
+#include "render_command.hpp"
 #include "scene_file.hpp"
 #include "service/server.hpp"
 
@@ -29,6 +31,9 @@ struct Options {
   std::vector<std::string> assignments;
   flagsim::ServerOptions server;
   std::string log_level = "info";
+  flagsim::RenderRequest render;
+  double render_fps = 0;   ///< 0: the scene's frame_rate
+  int render_threads = 0;  ///< 0: the scene's threads
 };
 
 /// The scene with --set overrides, each checked by the parameter table. Throws SceneError.
@@ -46,6 +51,55 @@ flagsim::Scene BuildScene(const Options& options) {
   const std::string problem = flagsim::ParameterTable::CheckConsistency(scene);
   if (!problem.empty()) throw flagsim::SceneError(problem);
   return scene;
+}
+
+/// `flagd render`: its own copy of the scene options, so that they read naturally after it.
+CLI::App* AddRenderCommand(CLI::App& app, Options& options) {
+  CLI::App* render = app.add_subcommand(
+      "render",
+      "run a scene as fast as possible with no network, into an LCM log (the channels a live server "
+      "publishes, stamped in simulated time: lcm-logplayer plays it in real time) and/or PNG frames");
+  render
+      ->add_option("--scene", options.scene, "a preset (breeze, calm, gale, hanging) or a scene file (.toml)")
+      ->capture_default_str();
+  render->add_option("--set", options.assignments, "override a parameter: NAME=VALUE (repeatable)");
+  render->add_option("--duration", options.render.duration, "seconds of simulated time to render")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  render
+      ->add_option("--fps", options.render_fps,
+                   "frames per second of simulated time (default: the scene's frame_rate, 30)")
+      ->check(CLI::PositiveNumber);
+  render->add_option("-o,--output", options.render.log_path, "the LCM log to write");
+  render->add_option("--png-dir", options.render.png_dir, "also write each frame there as frame_%06d.png");
+  render->add_option("--threads", options.render_threads, "worker threads (default: the scene's threads)")
+      ->check(CLI::PositiveNumber);
+  render->add_option("--prefix", options.prefix, "channel prefix in the log")->capture_default_str();
+  return render;
+}
+
+/// --fps and --threads are parameters, checked by the table after the --set ones. Throws
+/// SceneError naming the option.
+void ApplyRenderOverrides(const Options& options, flagsim::Scene* scene) {
+  const auto assign = [scene](const char* option, const char* name, double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.17g", value);
+    const std::string problem = flagsim::ParameterTable::Get().Assign(name, text, scene);
+    if (!problem.empty()) throw flagsim::SceneError(std::string(option) + " " + problem);
+  };
+  if (options.render_fps > 0) assign("--fps", "frame_rate", options.render_fps);
+  if (options.render_threads > 0) assign("--threads", "threads", options.render_threads);
+}
+
+/// A render writes something and draws frames. Throws SceneError (a usage error) if not.
+void CheckRender(const Options& options, const flagsim::Scene& scene) {
+  if (options.render.log_path.empty() && options.render.png_dir.empty()) {
+    throw flagsim::SceneError("render: nothing to write; give -o LOG, --png-dir DIR or both");
+  }
+  if (scene.service.frame_rate <= 0) {
+    throw flagsim::SceneError(
+        "render: frame_rate is 0 in the scene, so no frame would be drawn; give --fps F");
+  }
 }
 
 }  // namespace
@@ -67,6 +121,7 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
+  CLI::App* render = AddRenderCommand(app, options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -77,9 +132,19 @@ int main(int argc, char** argv) {
   flagsim::Scene scene;
   try {
     scene = BuildScene(options);
+    if (render->parsed()) {
+      ApplyRenderOverrides(options, &scene);
+      CheckRender(options, scene);
+    }
   } catch (const flagsim::SceneError& error) {
     std::cerr << "flagd: " << error.what() << "\n";
     return 2;
+  }
+  if (render->parsed()) {
+    std::signal(SIGINT, OnSignal);
+    std::signal(SIGTERM, OnSignal);
+    options.render.prefix = options.prefix;
+    return flagsim::RunRender(scene, options.render, g_stop);
   }
 
   try {
@@ -95,8 +160,8 @@ int main(int argc, char** argv) {
     const auto& state = server.session().simulation().state();
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
-    spdlog::info("flagd: stopped at step {}, t = {:.3f} s, state hash {:016x}, peak memory {:.1f} MB", state.step,
-                 state.time, server.session().simulation().Hash(), usage.ru_maxrss / 1024.0);
+    spdlog::info("flagd: stopped at step {}, t = {:.3f} s, state hash {:016x}, peak memory {:.1f} MB",
+                 state.step, state.time, server.session().simulation().Hash(), usage.ru_maxrss / 1024.0);
   } catch (const std::exception& error) {
     std::cerr << "flagd: " << error.what() << "\n";
     return 1;

@@ -34,6 +34,20 @@ state_t MakeStateMessage(const Session& session, int64_t utime) {
   return message;
 }
 
+double StateRate(const Session& session) {
+  return session.simulation().sleeping() ? 1.0 : session.scene().service.state_rate;
+}
+
+FrameInfo MakeFrameInfo(const Session& session, int64_t utime) {
+  FrameInfo info;
+  info.utime = utime;
+  info.step = session.simulation().state().step;
+  info.sim_time = session.simulation().state().time;
+  info.view = session.scene().camera.View();
+  info.projection = session.scene().camera.Projection();
+  return info;
+}
+
 params_t MakeParamsMessage(const Scene& scene, int64_t utime) {
   params_t message;
   message.utime = utime;

@@ -1,5 +1,6 @@
-// Outgoing messages built from the session: STATE, PARAMS, STATUS. Pure functions of what they
-// read, so tests can check them without a bus.
+// Outgoing messages built from the session: STATE, PARAMS, STATUS, and what a frame's
+// manifest says of the session. Pure functions of what they read, so tests can check them
+// without a bus.
 #pragma once
 
 #include <cstdint>
@@ -9,11 +10,19 @@
 #include "flagsim/status_t.hpp"
 #include "server_stats.hpp"
 #include "session.hpp"
+#include "tile_stream.hpp"
 
 namespace flagsim {
 
 /// The flag's nodes now: positions, grid, pole, mean wind, hash.
 state_t MakeStateMessage(const Session& session, int64_t utime);
+
+/// STATE messages per second of simulated time: the scene's rate, or 1 Hz while the flag
+/// sleeps (it does not move; once a second says so).
+double StateRate(const Session& session);
+
+/// The step, time and camera of a frame drawn now, for its manifest.
+FrameInfo MakeFrameInfo(const Session& session, int64_t utime);
 
 /// The parameter table with the session's current values.
 params_t MakeParamsMessage(const Scene& scene, int64_t utime);

@@ -7,7 +7,7 @@
 
 namespace flagsim {
 
-PacedPublisher::PacedPublisher(Bus& bus) : bus_(bus), thread_([this] { Run(); }) {}
+PacedPublisher::PacedPublisher(Publisher& publisher) : publisher_(publisher), thread_([this] { Run(); }) {}
 
 PacedPublisher::~PacedPublisher() {
   {
@@ -31,10 +31,8 @@ size_t PacedPublisher::queued() const {
   return queue_.size();
 }
 
-// Two token buckets, refilled continuously: a message leaves when both hold enough.
+// queue => departure time from the pacing => sleep until then => publish
 void PacedPublisher::Run() {
-  double message_tokens = kMessagesPerSecond * kBurstSeconds, byte_tokens = kBytesPerSecond * kBurstSeconds;
-  double last = MonotonicSeconds();
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
@@ -42,20 +40,10 @@ void PacedPublisher::Run() {
     Item item = std::move(queue_.front());
     queue_.pop_front();
     lock.unlock();
-    while (true) {
-      const double now = MonotonicSeconds();
-      message_tokens =
-          std::min(message_tokens + (now - last) * kMessagesPerSecond, kMessagesPerSecond * kBurstSeconds);
-      byte_tokens = std::min(byte_tokens + (now - last) * kBytesPerSecond, kBytesPerSecond * kBurstSeconds);
-      last = now;
-      if (message_tokens >= 1 && byte_tokens >= double(item.bytes.size())) break;
-      const double wait = std::max((1 - message_tokens) / kMessagesPerSecond,
-                                   (double(item.bytes.size()) - byte_tokens) / kBytesPerSecond);
-      std::this_thread::sleep_for(std::chrono::duration<double>(std::max(wait, 50e-6)));
-    }
-    message_tokens -= 1;
-    byte_tokens -= double(item.bytes.size());
-    bus_.Publish(item.channel, item.bytes.data(), item.bytes.size());
+    const double departure = pacing_.Depart(MonotonicSeconds(), item.bytes.size());
+    const double wait = departure - MonotonicSeconds();
+    if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+    publisher_.Publish(item.channel, item.bytes.data(), item.bytes.size());
     lock.lock();
   }
 }

@@ -1,7 +1,7 @@
 // Publishing at a bounded rate from a thread of its own. LCM 1.3.1 over UDP loses bursts (a
-// receiver's socket buffer overflows), so tiles leave at most kMessagesPerSecond and
-// kBytesPerSecond (token buckets), in the order they were queued, while the server's loop goes
-// on stepping.
+// receiver's socket buffer overflows), so tiles leave no faster than PublishPacing allows
+// (token buckets on messages and bytes), in the order they were queued, while the server's
+// loop goes on stepping.
 #pragma once
 
 #include <condition_variable>
@@ -12,17 +12,14 @@
 #include <thread>
 #include <vector>
 
-#include "bus.hpp"
+#include "publish_pacing.hpp"
+#include "publisher.hpp"
 
 namespace flagsim {
 
 class PacedPublisher {
  public:
-  static constexpr double kMessagesPerSecond = 4000;
-  static constexpr double kBytesPerSecond = 48e6;
-  static constexpr double kBurstSeconds = 0.004;  ///< how much may leave at once
-
-  explicit PacedPublisher(Bus& bus);
+  explicit PacedPublisher(Publisher& publisher);
   ~PacedPublisher();  ///< publishes what is queued, then stops
   PacedPublisher(const PacedPublisher&) = delete;
   PacedPublisher& operator=(const PacedPublisher&) = delete;
@@ -32,9 +29,7 @@ class PacedPublisher {
 
   template <class Message>
   void Enqueue(const std::string& channel, const Message& message) {
-    std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
-    message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    Enqueue(channel, std::move(bytes));
+    Enqueue(channel, Publisher::Encode(message));
   }
 
   /// Messages not yet published.
@@ -47,7 +42,8 @@ class PacedPublisher {
   };
   void Run();
 
-  Bus& bus_;
+  Publisher& publisher_;
+  PublishPacing pacing_;  ///< on wall time, s
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Item> queue_;

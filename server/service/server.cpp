@@ -79,17 +79,10 @@ void Server::StepDue(double now) {
 void Server::AfterStep() {
   intake_.AfterStep();
   const double time = session_.simulation().state().time;
-  if (time >= next_state_time_) {
-    PublishState();
-    // Asleep, the flag does not move: once a second says so.
-    const double rate = session_.simulation().sleeping() ? 1.0 : session_.scene().service.state_rate;
-    next_state_time_ = std::max(next_state_time_ + 1.0 / rate, time);
-  }
-  const double frame_rate = session_.scene().service.frame_rate;
-  if (frame_rate > 0 && time >= next_frame_time_) {
+  if (state_cadence_.Due(time, StateRate(session_))) PublishState();
+  if (frame_cadence_.Due(time, session_.scene().service.frame_rate)) {
     if (frame_due_) ++stats_.frames_skipped;
     frame_due_ = true;
-    next_frame_time_ = std::max(next_frame_time_ + 1.0 / frame_rate, time);
   }
 }
 
@@ -134,13 +127,7 @@ void Server::FrameDue() {
   drawn_asleep_ = asleep;
   drawn_revision_ = session_.revision();
   const double rendered = MonotonicSeconds();
-  FrameInfo info;
-  info.utime = UnixMicros();
-  info.step = session_.simulation().state().step;
-  info.sim_time = session_.simulation().state().time;
-  info.view = session_.scene().camera.View();
-  info.projection = session_.scene().camera.Projection();
-  const EncodedFrame frame = tiles_.Encode(image, info, threads);
+  const EncodedFrame frame = tiles_.Encode(image, MakeFrameInfo(session_, UnixMicros()), threads);
   for (const tile_t& tile : frame.tiles) paced_.Enqueue(channels_.tile, tile);
   paced_.Enqueue(channels_.frame, frame.manifest);
   stats_.render_seconds += rendered - start;

@@ -21,6 +21,7 @@
 #include "scene.hpp"
 #include "server_stats.hpp"
 #include "session.hpp"
+#include "sim_cadence.hpp"
 #include "tile_stream.hpp"
 
 namespace flagsim {
@@ -67,8 +68,8 @@ class Server {
   double start_wall_ = -1;  ///< s, monotonic, first Tick
   double accumulator_ = 0;  ///< s of wall time owed to the simulation
   double last_tick_ = -1;
-  double next_state_time_ = 0;  ///< s of simulated time when STATE is next due
-  double next_frame_time_ = 0;  ///< s of simulated time when a frame is next due
+  SimCadence state_cadence_;  ///< STATE, on simulated time
+  SimCadence frame_cadence_;  ///< frames, on simulated time
   bool frame_due_ = false;
   bool integrator_replaced_ = false;  ///< by the guard: PARAMS is due
   bool drawn_asleep_ = false;         ///< the last frame was drawn with the flag asleep

@@ -1,0 +1,121 @@
+// flagctl export: a log's frames into PNGs or a video.
+//
+//   survey    FRAME and PARAMS only: is there a keyframe, what size, what frame rate
+//   frames    TILE and FRAME through the assembler (log_frames.hpp): whole images, the
+//             timing kept (lost and missing frames repeat the last whole one)
+//   output    PNG files, or ffmpeg fed down a pipe (frame_output.hpp)
+//   report    what was skipped, repeated or dropped, and where a damaged log stopped
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "flagctl_commands.hpp"
+#include "frame_output.hpp"
+#include "log_frames.hpp"
+#include "progress_bar.hpp"
+
+namespace flagsim {
+namespace {
+
+constexpr double kFallbackFrameRate = 30;  ///< Hz, for a log that tells none (a single frame)
+
+void Note(int64_t count, const char* what) {
+  if (count > 0) std::fprintf(stderr, "flagctl export: note: %lld %s\n", static_cast<long long>(count), what);
+}
+
+/// What the log held that did not go into the output as it was.
+void ReportSkips(const LogFramesReport& report) {
+  Note(report.skipped_before_keyframe,
+       "frame(s) before the first whole keyframe skipped (recorded mid-stream)");
+  Note(report.lost,
+       "frame(s) with tiles missing (the frame hash did not check out): each repeats the last whole frame");
+  Note(report.gaps, "frame time(s) with no frame (the server skipped them): each repeats the last frame");
+  Note(report.dropped, "frame(s) between two frame times dropped (extra keyframes asked for by REFRESH)");
+  Note(report.time_jumps, "jump(s) in simulated time (a new session in the log): counted afresh from there");
+  Note(report.undecodable, "TILE or FRAME event(s) that were not one ignored");
+  Note(report.refused_tiles, "tile(s) refused by the assembler (bad data)");
+}
+
+/// Exit code and message for a log that holds nothing to export.
+int NothingToExport(const ExportRequest& request, const Channels& channels, const LogSurvey& survey) {
+  if (!survey.problem.empty()) std::fprintf(stderr, "flagctl export: %s\n", survey.problem.c_str());
+  std::fprintf(
+      stderr, "flagctl export: %s holds no complete frame on %s (%lld FRAME events, %lld keyframes)%s\n",
+      request.log_path.c_str(), channels.frame.c_str(), static_cast<long long>(survey.manifests),
+      static_cast<long long>(survey.keyframes),
+      survey.manifests == 0 && survey.problem.empty() ? "; is the server's channel prefix another (--prefix)?"
+                                                      : "");
+  return kNothingToExport;
+}
+
+std::string Summary(const ExportRequest& request, const FrameOutput& output, const LogFrames& frames,
+                    bool sizes_vary, double frame_rate, const std::string& rate_source) {
+  char line[512];
+  std::snprintf(line, sizeof(line), "%s: %lld frames, %s%d x %d px, %.6g frames per second (%s)",
+                request.output.c_str(), static_cast<long long>(output.frames()),
+                sizes_vary ? "the last " : "", frames.width(), frames.height(), frame_rate,
+                rate_source.c_str());
+  return line;
+}
+
+}  // namespace
+
+int Export(const Globals& globals, const ExportRequest& request) {
+  std::string problem;
+  const std::optional<OutputKind> kind = OutputKindOf(request.output, &problem);
+  if (!kind) {
+    std::fprintf(stderr, "flagctl export: -o %s\n", problem.c_str());
+    return kUsage;
+  }
+  const Channels channels(globals.prefix);
+  LogSurvey survey;
+  std::unique_ptr<LogFrames> frames;
+  try {
+    survey = SurveyLog(request.log_path, channels);
+    frames = std::make_unique<LogFrames>(request.log_path, channels, survey.frame_rate);
+  } catch (const std::runtime_error& error) {
+    std::fprintf(stderr, "flagctl export: %s\n", error.what());
+    return kUsage;
+  }
+  if (survey.keyframes == 0) return NothingToExport(request, channels, survey);
+  const double rate = request.frame_rate > 0  ? request.frame_rate
+                      : survey.frame_rate > 0 ? survey.frame_rate
+                                              : kFallbackFrameRate;
+  const std::string rate_source = request.frame_rate > 0  ? "--fps"
+                                  : survey.frame_rate > 0 ? "the log's " + survey.frame_rate_source
+                                                          : "the log tells none";
+  const std::unique_ptr<FrameOutput> output = MakeFrameOutput(*kind, request.output, rate);
+
+  // Frames into the output until the log ends, the output fails or the user interrupts.
+  ProgressBar bar;
+  bool sizes_vary = false;
+  while (problem.empty() && !g_stop.load() && frames->Next()) {
+    sizes_vary |= frames->width() != survey.width || frames->height() != survey.height;
+    problem = output->Write(frames->image().data(), frames->width(), frames->height());
+    const EventLogReader& reader = frames->reader();
+    bar.Update(reader.size() > 0 ? double(reader.offset()) / double(reader.size()) : 1.0,
+               "frame " + std::to_string(frames->images()));
+  }
+  const std::string finished = output->Finish();
+  if (problem.empty()) problem = finished;
+  bar.Finish(output->frames() > 0 ? Summary(request, *output, *frames, sizes_vary, rate, rate_source)
+                                  : "flagctl export: no frame written");
+
+  ReportSkips(frames->report());
+  if (!frames->reader().problem().empty()) {
+    std::fprintf(stderr, "flagctl export: %s; exported everything before it\n",
+                 frames->reader().problem().c_str());
+  }
+  if (!problem.empty()) {
+    std::fprintf(stderr, "flagctl export: %s\n", problem.c_str());
+    return kFailed;
+  }
+  if (g_stop.load()) {
+    std::fprintf(stderr, "flagctl export: interrupted; %s holds the frames so far\n", request.output.c_str());
+    return kFailed;
+  }
+  return frames->images() > 0 ? kOk : NothingToExport(request, channels, survey);
+}
+
+}  // namespace flagsim

@@ -1,0 +1,34 @@
+// Where exported frames go, chosen by the output's name:
+//
+//   DIR/ or an existing directory   PNG files frame_000000.png, frame_000001.png, ...
+//   NAME.mp4                        H.264 (libx264, yuv420p; odd sizes padded to even) by ffmpeg
+//   NAME.gif                        a GIF by ffmpeg, each frame with its own palette
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace flagsim {
+
+enum class OutputKind { kPngDirectory, kMp4, kGif };
+
+/// The kind of output `path` names; nullopt with *error naming what is allowed if none.
+std::optional<OutputKind> OutputKindOf(const std::string& path, std::string* error);
+
+class FrameOutput {
+ public:
+  virtual ~FrameOutput() = default;
+  /// Adds one image, RGB8 rows top to bottom. Returns "" or what went wrong (then stop).
+  virtual std::string Write(const uint8_t* rgb, int width, int height) = 0;
+  /// Completes the output (a video's encoder finishes); "" or what went wrong.
+  virtual std::string Finish() = 0;
+  virtual int64_t frames() const = 0;  ///< images written
+};
+
+/// An output of `kind` at `path`; a video plays at `frame_rate` Hz. Nothing is created on disk
+/// until the first Write.
+std::unique_ptr<FrameOutput> MakeFrameOutput(OutputKind kind, const std::string& path, double frame_rate);
+
+}  // namespace flagsim

@@ -1,0 +1,78 @@
+#include "frame_output.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "png_file.hpp"
+#include "video_output.hpp"
+
+namespace flagsim {
+namespace {
+
+TEST(OutputKindOf, ByTheNameAndWhatIsThere) {
+  std::string error;
+  EXPECT_EQ(OutputKindOf("frames/", &error), OutputKind::kPngDirectory);
+  EXPECT_EQ(OutputKindOf(::testing::TempDir(), &error), OutputKind::kPngDirectory);  // exists
+  EXPECT_EQ(OutputKindOf("run.mp4", &error), OutputKind::kMp4);
+  EXPECT_EQ(OutputKindOf("out/run.gif", &error), OutputKind::kGif);
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(OutputKindOf("run.avi", &error), std::nullopt);
+  EXPECT_NE(error.find("'run.avi'"), std::string::npos) << error;
+  EXPECT_NE(error.find("NAME.mp4 or NAME.gif"), std::string::npos) << error;
+  EXPECT_EQ(OutputKindOf("frames", &error), std::nullopt) << "not a directory yet, no slash";
+}
+
+TEST(FrameOutput, PngsAreNumberedInTheirDirectory) {
+  const std::string directory =
+      std::string(::testing::TempDir()) + "/" + std::to_string(getpid()) + "_pngs/deeper";
+  const auto output = MakeFrameOutput(OutputKind::kPngDirectory, directory, 30);
+  std::vector<uint8_t> rgb(5 * 3 * 3);
+  for (int i = 0; i < 3; ++i) {
+    std::fill(rgb.begin(), rgb.end(), uint8_t(40 * i));
+    EXPECT_EQ(output->Write(rgb.data(), 5, 3), "");
+  }
+  EXPECT_EQ(output->Finish(), "");
+  EXPECT_EQ(output->frames(), 3);
+  int width = 0, height = 0;
+  std::vector<uint8_t> read;
+  ASSERT_EQ(ReadPng(directory + "/frame_000002.png", &width, &height, &read), "");
+  EXPECT_EQ(read, rgb);
+  EXPECT_EQ(PngFramePath(directory, 2), directory + "/frame_000002.png");
+  std::filesystem::remove_all(std::filesystem::path(directory).parent_path());
+}
+
+TEST(VideoOutput, FfmpegGetsTheSizeRateAndAFileNameThatIsNoOption) {
+  const std::vector<std::string> mp4 = VideoOutput::Arguments(VideoFormat::kMp4, "-i.mp4", 201, 115, 12.5);
+  const auto has = [](const std::vector<std::string>& arguments, const std::string& argument) {
+    return std::find(arguments.begin(), arguments.end(), argument) != arguments.end();
+  };
+  EXPECT_TRUE(has(mp4, "201x115"));
+  EXPECT_TRUE(has(mp4, "12.5"));
+  EXPECT_TRUE(has(mp4, "libx264"));
+  EXPECT_TRUE(has(mp4, "yuv420p"));
+  EXPECT_TRUE(has(mp4, "pad=ceil(iw/2)*2:ceil(ih/2)*2")) << "yuv420p needs even sizes";
+  EXPECT_EQ(mp4.back(), "file:-i.mp4");
+  const std::vector<std::string> gif = VideoOutput::Arguments(VideoFormat::kGif, "a b.gif", 8, 8, 30);
+  EXPECT_TRUE(has(gif, "gif"));
+  EXPECT_EQ(gif.back(), "file:a b.gif");
+}
+
+TEST(VideoOutput, AFrameOfAnotherSizeIsRefused) {
+  const std::string path = std::string(::testing::TempDir()) + "/" + std::to_string(getpid()) + "_size.mp4";
+  if (FindOnPath("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed (scripts/install-deps.sh)";
+  VideoOutput video(path, VideoFormat::kMp4, 10);
+  std::vector<uint8_t> rgb(16 * 16 * 3, 100);
+  ASSERT_EQ(video.Write(rgb.data(), 16, 16), "");
+  EXPECT_NE(video.Write(rgb.data(), 8, 16).find("a video keeps one size"), std::string::npos);
+  EXPECT_EQ(video.Finish(), "");
+  EXPECT_EQ(video.frames(), 1);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace flagsim
