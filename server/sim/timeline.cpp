@@ -132,7 +132,7 @@ CameraControl CameraAt(const std::vector<Keyframe>& keys, const Around& a, doubl
     camera.eye[k] = Scalar(keys, a, position, [k](const Keyframe& key) { return key.camera->eye[k]; });
     camera.target[k] = Scalar(keys, a, position, [k](const Keyframe& key) { return key.camera->target[k]; });
   }
-  camera.fov_y = Scalar(keys, a, position, [](const Keyframe& key) { return key.camera->fov_y; });
+  camera.fov = Scalar(keys, a, position, [](const Keyframe& key) { return key.camera->fov; });
   return camera;
 }
 
@@ -170,7 +170,7 @@ void Blend(const Controls& from, double w, Controls* to) {
       to->camera->eye[k] = Mix(from.camera->eye[k], to->camera->eye[k], w);
       to->camera->target[k] = Mix(from.camera->target[k], to->camera->target[k], w);
     }
-    to->camera->fov_y = Mix(from.camera->fov_y, to->camera->fov_y, w);
+    to->camera->fov = Mix(from.camera->fov, to->camera->fov, w);
   }
 }
 
@@ -302,7 +302,7 @@ bool operator==(const WindControl& a, const WindControl& b) {
   return a.velocity == b.velocity && a.gust == b.gust;
 }
 bool operator==(const CameraControl& a, const CameraControl& b) {
-  return a.eye == b.eye && a.target == b.target && a.fov_y == b.fov_y;
+  return a.eye == b.eye && a.target == b.target && a.fov == b.fov;
 }
 bool operator==(const ParameterControl& a, const ParameterControl& b) {
   return a.name == b.name && a.value == b.value;

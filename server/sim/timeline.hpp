@@ -39,9 +39,9 @@ struct WindControl {
 
 /// The camera a key sets: eye and target as the scene's camera holds them.
 struct CameraControl {
-  Vec3 eye{};          ///< m
-  Vec3 target{};       ///< m, the point looked at
-  double fov_y = 0.7;  ///< rad, vertical field of view
+  Vec3 eye{};       ///< m
+  Vec3 target{};    ///< m, the point looked at
+  double fov = 40;  ///< degrees, vertical field of view
 };
 
 /// A numeric parameter a key sets: a name of the parameter table and its value in its unit.

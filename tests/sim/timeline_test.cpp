@@ -130,16 +130,16 @@ TEST(Timeline, CubicWindKeepsTurningThroughAKeyAndSlowsToSwingBack) {
 TEST(Timeline, CameraMovesByTheLaw) {
   Timeline timeline;
   Keyframe key;
-  key.camera = CameraControl{{0, 2, 4}, {1, 2, 0}, 0.6};
+  key.camera = CameraControl{{0, 2, 4}, {1, 2, 0}, 30};
   timeline.Add(key);
   key.time = 2;
-  key.camera = CameraControl{{4, 2, 0}, {1, 3, 0}, 0.8};
+  key.camera = CameraControl{{4, 2, 0}, {1, 3, 0}, 50};
   timeline.Add(key);
   const CameraControl camera = *timeline.Evaluate(0.5).camera;
   EXPECT_DOUBLE_EQ(camera.eye[0], 1);
   EXPECT_DOUBLE_EQ(camera.eye[2], 3);
   EXPECT_DOUBLE_EQ(camera.target[1], 2.25);
-  EXPECT_DOUBLE_EQ(camera.fov_y, 0.65);
+  EXPECT_DOUBLE_EQ(camera.fov, 35);
 }
 
 TEST(Timeline, AddingAtTheSameTimeReplacesAndKeysStayInOrder) {
