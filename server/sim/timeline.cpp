@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace flagsim::sim {
 namespace {
@@ -12,7 +13,6 @@ Vec3 Scaled(const Vec3& v, double factor) { return {v[0] * factor, v[1] * factor
 Vec3 Cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double Mix(double from, double to, double w) { return from + (to - from) * w; }
 
 /// The keys of one control's track around a position: `from` the last at or before it, `to`
 /// the first after it, `before` the track's key before `from`, `after` its key after `to`;
@@ -154,23 +154,65 @@ const double* FindParameter(const std::vector<ParameterControl>& parameters, con
   return nullptr;
 }
 
-/// `to` moved back a fraction 1 - w of the way towards `from`, control by control.
-void Blend(const Controls& from, double w, Controls* to) {
-  if (from.wind && to->wind) {
-    const double speed = Mix(Length(from.wind->velocity), Length(to->wind->velocity), w);
-    to->wind->velocity = Turned(from.wind->velocity, to->wind->velocity, w, speed);
-    to->wind->gust = Mix(from.wind->gust, to->wind->gust, w);
+/// v turned by `angle` (rad) about the unit vector `axis` (Rodrigues).
+Vec3 Rotated(const Vec3& v, const Vec3& axis, double angle) {
+  const Vec3 across = Cross(axis, v);
+  const double along = Dot(axis, v) * (1 - std::cos(angle)), sine = std::sin(angle), cosine = std::cos(angle);
+  return {v[0] * cosine + across[0] * sine + axis[0] * along,
+          v[1] * cosine + across[1] * sine + axis[1] * along,
+          v[2] * cosine + across[2] * sine + axis[2] * along};
+}
+
+/// The turn taking direction `a` to direction `b` (unit vectors): its unit axis and angle (rad).
+/// Opposite directions turn about the vertical made perpendicular to `a` (x if `a` is vertical),
+/// as Slerp does.
+std::pair<Vec3, double> TurnBetween(const Vec3& a, const Vec3& b) {
+  Vec3 axis = Cross(a, b);
+  const double angle = std::atan2(Length(axis), Dot(a, b));
+  if (Length(axis) < 1e-12) {
+    const Vec3 up = std::abs(a[1]) < 0.9 ? Vec3{0, 1, 0} : Vec3{1, 0, 0};
+    const double on_a = Dot(up, a);
+    axis = {up[0] - on_a * a[0], up[1] - on_a * a[1], up[2] - on_a * a[2]};
   }
-  for (ParameterControl& parameter : to->parameters) {
-    if (const double* start = FindParameter(from.parameters, parameter.name))
-      parameter.value = Mix(*start, parameter.value, w);
+  return {Scaled(axis, 1 / Length(axis)), angle};
+}
+
+/// The wind `now` with a part `left` of the jump from `start` to `from` added back: its speed
+/// changed by left (|from| - |start|), its direction turned by left of the turn from start's
+/// to from's.
+WindControl WithJump(const WindControl& now, const WindControl& start, const WindControl& from, double left) {
+  WindControl wind = now;
+  wind.gust = std::max(0.0, now.gust + (from.gust - start.gust) * left);
+  const double start_speed = Length(start.velocity), from_speed = Length(from.velocity);
+  const double now_speed = Length(now.velocity);
+  const double speed = std::max(0.0, now_speed + (from_speed - start_speed) * left);
+  Vec3 direction = now_speed > 0 ? Scaled(now.velocity, 1 / now_speed) : Vec3{0, 0, 0};
+  if (start_speed > 0 && from_speed > 0 && now_speed > 0) {
+    const auto [axis, angle] =
+        TurnBetween(Scaled(start.velocity, 1 / start_speed), Scaled(from.velocity, 1 / from_speed));
+    direction = Rotated(direction, axis, angle * left);
+  } else if (now_speed == 0 && from_speed > 0) {
+    direction = Scaled(from.velocity, 1 / from_speed);  // dying down: the way it blew
   }
-  if (from.camera && to->camera) {
+  wind.velocity = Scaled(direction, speed);
+  return wind;
+}
+
+/// Adds back a part `left` of the jump from `start` to `from` to the controls `now`, control by
+/// control; controls either lacks are left as they are.
+void AddJump(const Controls& start, const Controls& from, double left, Controls* now) {
+  if (now->wind && start.wind && from.wind) *now->wind = WithJump(*now->wind, *start.wind, *from.wind, left);
+  for (ParameterControl& parameter : now->parameters) {
+    const double* begun = FindParameter(start.parameters, parameter.name);
+    const double* held = FindParameter(from.parameters, parameter.name);
+    if (begun != nullptr && held != nullptr) parameter.value += (*held - *begun) * left;
+  }
+  if (now->camera && start.camera && from.camera) {
     for (int k = 0; k < 3; ++k) {
-      to->camera->eye[k] = Mix(from.camera->eye[k], to->camera->eye[k], w);
-      to->camera->target[k] = Mix(from.camera->target[k], to->camera->target[k], w);
+      now->camera->eye[k] += (from.camera->eye[k] - start.camera->eye[k]) * left;
+      now->camera->target[k] += (from.camera->target[k] - start.camera->target[k]) * left;
     }
-    to->camera->fov = Mix(from.camera->fov, to->camera->fov, w);
+    now->camera->fov += (from.camera->fov - start.camera->fov) * left;
   }
 }
 
@@ -259,8 +301,8 @@ Controls Timeline::Interpolated(double position) const {
 Controls Timeline::Evaluate(double position) const {
   Controls controls = Interpolated(position);
   if (glide_) {
-    const Segment glide{0, kGlideTime, 0, 1, 0, 0, kGlideTime, 1};
-    Blend(glide_->from, Interpolate(ControlLaw::kSmooth, glide, glide_->elapsed), &controls);
+    const Segment glide{0, kGlideTime, 1, 0, 0, 1, kGlideTime, 0};  // 1 - w, by the smooth law
+    AddJump(glide_->start, glide_->from, Interpolate(ControlLaw::kSmooth, glide, glide_->elapsed), &controls);
   }
   return controls;
 }
@@ -279,21 +321,24 @@ std::vector<ParameterRange> Timeline::ParameterRanges(double position) const {
       range.low = reached.low;
       range.high = reached.high;
     }
-    if (const double* start = glide_ ? FindParameter(glide_->from.parameters, name) : nullptr) {
-      range.low = std::min(range.low, *start);
-      range.high = std::max(range.high, *start);
+    const double* begun = glide_ ? FindParameter(glide_->start.parameters, name) : nullptr;
+    const double* held = glide_ ? FindParameter(glide_->from.parameters, name) : nullptr;
+    if (begun != nullptr && held != nullptr) {  // the jump still to die away, at most all of it
+      range.low += std::min(0.0, *held - *begun);
+      range.high += std::max(0.0, *held - *begun);
     }
     ranges.push_back(range);
   }
   return ranges;
 }
 
-void Timeline::StartGlide(const Controls& from) { glide_ = Glide{0, from}; }
+void Timeline::StartGlide(const Controls& from) { glide_ = Glide{0, from, Interpolated(position_)}; }
 
 bool Timeline::operator==(const Timeline& other) const {
   const bool same_glide =
       glide_.has_value() == other.glide_.has_value() &&
-      (!glide_ || (glide_->elapsed == other.glide_->elapsed && glide_->from == other.glide_->from));
+      (!glide_ || (glide_->elapsed == other.glide_->elapsed && glide_->from == other.glide_->from &&
+                   glide_->start == other.glide_->start));
   return keys_ == other.keys_ && playing_ == other.playing_ && position_ == other.position_ &&
          speed_ == other.speed_ && loop_ == other.loop_ && same_glide;
 }

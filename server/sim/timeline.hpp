@@ -14,8 +14,9 @@
 //
 // Time: the timeline's position (s) moves by speed * dt per simulated step of dt, never by wall
 // time; past its last key it stops, or with loop wraps to 0. A glide smooths the controls that
-// a command would otherwise make jump (play, seek, an edit during play): from the values in
-// force to the timeline's over kGlideTime of simulated time, by the smooth law.
+// a command would otherwise make jump (play, seek, an edit during play): the jump, the values in
+// force less the timeline's own at that moment, dies away by the smooth law over kGlideTime of
+// simulated time. An edit that leaves the values at the position as they were changes nothing.
 //
 // A plain value: keys, play state and glide are all it holds (no clock, no cache), so a copy is
 // a checkpoint. It checks nothing; server/scene/scene_timeline.hpp validates keys and limits.
@@ -118,9 +119,9 @@ class Timeline {
   std::vector<ParameterRange> ParameterRanges(double position) const;
 
   /// From now on, the controls glide from `from` (the values in force) to the timeline's over
-  /// kGlideTime: Evaluate gives from + (timeline - from) w, w the smooth law's fraction of the
-  /// glide's time gone by (for the wind: the speed so, the direction by Slerp). Controls that
-  /// `from` does not hold start at the timeline's values.
+  /// kGlideTime: with j = from - (the timeline's values now), Evaluate gives timeline + j (1 - w),
+  /// w the smooth law's fraction of the glide's time gone by. For the wind j is a change of speed
+  /// and a turn, which die away alike. Controls `from` does not hold follow the timeline at once.
   void StartGlide(const Controls& from);
   bool gliding() const { return glide_.has_value(); }
 
@@ -128,10 +129,12 @@ class Timeline {
   bool operator!=(const Timeline& other) const { return !(*this == other); }
 
  private:
-  /// A glide under way: how long it has run and the controls it started from.
+  /// A glide under way: how long it has run, and the jump it smooths: from the timeline's values
+  /// when it started (`start`) to the values then in force (`from`).
   struct Glide {
     double elapsed = 0;  ///< s of simulated time since it started
     Controls from;
+    Controls start;
   };
   Controls Interpolated(double position) const;
 

@@ -233,16 +233,14 @@ TEST(Timeline, KeysEditedDuringPlayGlideInsteadOfJumping) {
   for (double t = 2; t < 4; t += 0.1) EXPECT_EQ(ParameterAt(later, t), ParameterAt(timeline, t));
 
   // The key at 4 s changed to 7000: the curve at 2 s is now 4000. With the glide the value
-  // starts where it was and takes kGlideTime to join the new curve, w of the way: its rate
-  // (curve - from) w' + curve' w is at most the gap at the glide's end (2000 + 1500 kGlideTime)
-  // times the smooth law's peak rate 1.5 / kGlideTime, plus the curve's 1500/s.
+  // starts where it was, and the jump of -2000 dies away over kGlideTime by the smooth law, whose
+  // peak rate is 1.5 times its mean: at most 1500/s (the curve's) + 2000 * 1.5 / kGlideTime.
   Timeline edited = timeline;
   edited.Add(Stiffness(4, 7000));
   EXPECT_DOUBLE_EQ(ParameterAt(edited, 2), 4000);
   edited.StartGlide(timeline.Evaluate(2));
   EXPECT_DOUBLE_EQ(ParameterAt(edited, 2), 2000);
-  const double gap = 2000 + 1500 * Timeline::kGlideTime;
-  const double bound = (gap * 1.5 / Timeline::kGlideTime + 1500) * dt;
+  const double bound = (1500 + 2000 * 1.5 / Timeline::kGlideTime) * dt;
   EXPECT_LT(LargestStepChange(&edited, dt, 500), bound * 1.01);
   EXPECT_FALSE(edited.gliding());
   EXPECT_DOUBLE_EQ(ParameterAt(edited, edited.position()), 1000 + 1500 * edited.position());
@@ -254,6 +252,52 @@ TEST(Timeline, KeysEditedDuringPlayGlideInsteadOfJumping) {
   EXPECT_DOUBLE_EQ(ParameterAt(removed, 2), 2000);
   EXPECT_LT(LargestStepChange(&removed, dt, 500), 1.5 * 1000 / Timeline::kGlideTime * dt * 1.01);
   EXPECT_EQ(ParameterAt(removed, removed.position()), 1000);
+}
+
+// An edit that leaves the values at the position as they were (a key in a later segment, for
+// the linear law) starts a glide with nothing to smooth: the values are the timeline's, bit for bit.
+TEST(Timeline, AGlideWithoutAJumpChangesNothing) {
+  Timeline timeline;
+  timeline.Add(Stiffness(0, 1000));
+  timeline.Add(Stiffness(4, 3000));
+  timeline.Add(Wind(0, {5, 0, 1}));
+  timeline.Play();
+  timeline.Seek(1);
+  Timeline edited = timeline;
+  edited.Add(Stiffness(6, 9000));
+  edited.StartGlide(timeline.Evaluate(1));
+  Timeline plain = timeline;
+  plain.Add(Stiffness(6, 9000));
+  for (int i = 0; i < 200; ++i) {
+    EXPECT_EQ(edited.Evaluate(edited.position()), plain.Evaluate(plain.position()));
+    edited.Advance(0.002);
+    plain.Advance(0.002);
+  }
+}
+
+// A glide of the wind turns it and changes its speed; it does not blow it through zero.
+TEST(Timeline, AWindGlideTurnsTheWind) {
+  Timeline timeline;
+  timeline.Add(Wind(0, {0, 0, -6}));
+  timeline.Play();
+  Controls from;
+  from.wind = WindControl{{3, 0, 0}, 0};
+  timeline.StartGlide(from);
+  const Vec3 first = timeline.Evaluate(0).wind->velocity;
+  EXPECT_NEAR(first[0], 3, 1e-12);
+  EXPECT_NEAR(first[2], 0, 1e-12);
+  double last_heading = 0;
+  for (int i = 1; timeline.gliding(); ++i) {
+    timeline.Advance(0.002);
+    const Vec3 wind = timeline.Evaluate(0).wind->velocity;
+    const double w = timeline.gliding() ? 3 * std::pow(i * 0.002 / Timeline::kGlideTime, 2) -
+                                              2 * std::pow(i * 0.002 / Timeline::kGlideTime, 3)
+                                        : 1.0;
+    EXPECT_NEAR(Speed(wind), 3 + 3 * w, 1e-9);  // the speed goes 3 -> 6 by the smooth law
+    EXPECT_GE(Heading(wind), last_heading);     // and the heading turns one way, 0 -> 90 degrees
+    last_heading = Heading(wind);
+  }
+  EXPECT_NEAR(last_heading, M_PI / 2, 1e-12);
 }
 
 TEST(Timeline, AGlideAtTheEndRunsItsCourseBeforePlayStops) {
@@ -297,11 +341,14 @@ TEST(Timeline, RangesHoldEveryValueTheSegmentReaches) {
       EXPECT_GT(high, 3000);
     }
   }
-  // A glide under way widens the range to where it started.
+  // A glide under way widens the range by the jump still to die away: from 1000 (the timeline at
+  // its position, 0 s) to 9000 in force.
+  const double plain = timeline.ParameterRanges(4.5)[0].high;
   Controls from;
   from.parameters = {{"stiffness", 9000}};
   timeline.StartGlide(from);
   EXPECT_EQ(timeline.ParameterRanges(0.5)[0].high, 9000);
+  EXPECT_EQ(timeline.ParameterRanges(4.5)[0].high, plain + 8000);
 }
 
 TEST(Timeline, ACopyIsACheckpoint) {
