@@ -159,8 +159,27 @@ std::vector<std::string> AnimatableNames() {
   return names;
 }
 
+std::string CheckTimelineTime(const std::string& field, double time) {
+  return CheckRange(field, time, 0, Limits::kMaxTime, " s");
+}
+
+std::string CheckTimelineSpeed(const std::string& field, double speed) {
+  if (speed > 0 && speed <= Limits::kMaxSpeed) return "";
+  return field + ": " + Number(speed) + "; allowed above 0, up to " + Number(Limits::kMaxSpeed) +
+         " timeline s per simulated s";
+}
+
+std::string SecondsText(double seconds) { return Number(seconds) + " s"; }
+
+std::string KeyTimes(const sim::Timeline& timeline) {
+  if (timeline.keys().empty()) return "none";
+  std::vector<std::string> times;
+  for (const sim::Keyframe& key : timeline.keys()) times.push_back(Number(key.time));
+  return List(times) + " s";
+}
+
 std::string CheckKeyframe(const sim::Keyframe& key, const std::string& what) {
-  std::string problem = CheckRange(what + ".time", key.time, 0, Limits::kMaxTime, " s");
+  std::string problem = CheckTimelineTime(what + ".time", key.time);
   if (!problem.empty()) return problem;
   const int law = static_cast<int>(key.law);
   if (law < 0 || law >= int(sim::ControlLawNames().size())) {
@@ -188,11 +207,8 @@ std::string CheckTimeline(const sim::Timeline& timeline, const Scene& scene) {
     const std::string problem = CheckKeyframe(keys[i], "keys[" + std::to_string(i) + "]");
     if (!problem.empty()) return problem;
   }
-  std::string problem = CheckRange("position", timeline.position(), 0, Limits::kMaxTime, " s");
-  if (problem.empty() && !(timeline.speed() > 0 && timeline.speed() <= Limits::kMaxSpeed)) {
-    problem = "speed: " + Number(timeline.speed()) + "; allowed above 0, up to " + Number(Limits::kMaxSpeed) +
-              " timeline s per simulated s";
-  }
+  std::string problem = CheckTimelineTime("position", timeline.position());
+  if (problem.empty()) problem = CheckTimelineSpeed("speed", timeline.speed());
   return problem.empty() ? CheckReach(timeline, scene) : problem;
 }
 

@@ -30,6 +30,15 @@ struct TimelineLimits {
 /// The parameters a key may set, in the table's order.
 std::vector<std::string> AnimatableNames();
 
+/// "" or "field: value is out of range; allowed 0 .. 86400 s": a key's time or a seek's target.
+std::string CheckTimelineTime(const std::string& field, double time);
+/// "" or "field: value; allowed above 0, up to 100 ...": a playing speed.
+std::string CheckTimelineSpeed(const std::string& field, double speed);
+/// "2.5 s": a time in reasons, shortest exact.
+std::string SecondsText(double seconds);
+/// "0, 2, 4.5 s": the keys' times, for reasons that name a key that is not there.
+std::string KeyTimes(const sim::Timeline& timeline);
+
 /// "" or what is wrong with one key, named `what` ("key", "timeline.keys[2]"), its field named:
 /// "key.wind.velocity.x: ...", "key.parameters.cols: ...", "key.camera.fov: ...".
 std::string CheckKeyframe(const sim::Keyframe& key, const std::string& what);
