@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "checked_decode.hpp"
+#include "scene_timeline.hpp"
 #include "utime.hpp"
 
 namespace flagsim {
@@ -20,6 +21,65 @@ std::string CheckClientId(const std::string& client_id) {
   return "";
 }
 
+/// The timeline operation a KEYFRAME operation code names.
+std::optional<TimelineEdit::Operation> OperationOf(int8_t operation) {
+  switch (operation) {
+    case keyframe_command_t::ADD:
+      return TimelineEdit::kAdd;
+    case keyframe_command_t::CHANGE:
+      return TimelineEdit::kChange;
+    case keyframe_command_t::REMOVE:
+      return TimelineEdit::kRemove;
+    case keyframe_command_t::CLEAR:
+      return TimelineEdit::kClear;
+    case keyframe_command_t::PLAY:
+      return TimelineEdit::kPlay;
+    case keyframe_command_t::PAUSE:
+      return TimelineEdit::kPause;
+    case keyframe_command_t::SEEK:
+      return TimelineEdit::kSeek;
+    case keyframe_command_t::LOOP:
+      return TimelineEdit::kLoop;
+    case keyframe_command_t::SPEED:
+      return TimelineEdit::kSpeed;
+    default:
+      return std::nullopt;
+  }
+}
+
+/// The wire's key as the timeline's; "" or what is wrong with it as sent (its values are checked
+/// with the timeline). `law`: whether key.law is read.
+std::string ReadKey(const timeline_key_t& message, bool law, sim::Keyframe* key) {
+  if (law && (message.law < timeline_key_t::LAW_STEP || message.law > timeline_key_t::LAW_CUBIC)) {
+    return "key.law: " + std::to_string(message.law) +
+           " is not a law; allowed 0 (step), 1 (linear), 2 (smooth), 3 (cubic)";
+  }
+  if (message.num_parameters < 0 || size_t(message.num_parameters) > TimelineLimits::kMaxKeyParameters) {
+    return "key.num_parameters: " + std::to_string(message.num_parameters) + "; allowed 0 .. " +
+           std::to_string(TimelineLimits::kMaxKeyParameters);
+  }
+  key->time = message.time;
+  if (law) key->law = static_cast<sim::ControlLaw>(message.law);
+  if (message.has_wind) {
+    key->wind = sim::WindControl{
+        {message.wind_velocity[0], message.wind_velocity[1], message.wind_velocity[2]}, message.wind_gust};
+  }
+  for (size_t i = 0; i < message.names.size() && i < message.values.size(); ++i) {
+    if (message.names[i].size() > CommandIntake::kMaxNameLength) {
+      return "key.names[" + std::to_string(i) + "]: " + std::to_string(message.names[i].size()) +
+             " characters; allowed up to " + std::to_string(CommandIntake::kMaxNameLength);
+    }
+    key->parameters.push_back({message.names[i], message.values[i]});
+  }
+  if (message.has_camera) {
+    const auto& eye = message.camera_eye;
+    const auto& target = message.camera_target;
+    key->camera =
+        sim::CameraControl{{eye[0], eye[1], eye[2]}, {target[0], target[1], target[2]}, message.camera_fov};
+  }
+  return "";
+}
+
 }  // namespace
 
 CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats)
@@ -28,6 +88,7 @@ CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& sessio
   Subscribe<param_command_t>(channels.param, &CommandIntake::ApplyParams);
   Subscribe<refresh_request_t>(channels.refresh, &CommandIntake::ApplyRefresh);
   Subscribe<camera_command_t>(channels.camera, &CommandIntake::ApplyCamera);
+  Subscribe<keyframe_command_t>(channels.keyframe, &CommandIntake::ApplyKeyframe);
 }
 
 template <class Command>
@@ -128,6 +189,7 @@ std::string CommandIntake::ApplyParams(const param_command_t& command) {
   }
   const std::string problem = session_.ApplyParams(change);
   params_changed_ |= problem.empty();
+  timeline_changed_ |= problem.empty() && change.reset_to_scene;  // back to the scene's timeline
   return problem;
 }
 
@@ -147,6 +209,29 @@ std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
   move.width = command.width;
   move.height = command.height;
   return session_.ApplyCamera(move);
+}
+
+std::string CommandIntake::ApplyKeyframe(const keyframe_command_t& command) {
+  const std::optional<TimelineEdit::Operation> operation = OperationOf(command.operation);
+  if (!operation) {
+    return "operation: " + std::to_string(command.operation) +
+           " is not known; allowed 1 ADD, 2 REMOVE, 3 CLEAR, 4 PLAY, 5 PAUSE, 6 SEEK, 7 LOOP, 8 SPEED, 9 "
+           "CHANGE";
+  }
+  TimelineEdit edit;
+  edit.operation = *operation;
+  edit.time = command.time;
+  edit.speed = command.speed;
+  edit.loop = command.loop;
+  edit.keep_law = command.keep_law;
+  if (edit.operation == TimelineEdit::kAdd || edit.operation == TimelineEdit::kChange) {
+    const bool law = !(edit.operation == TimelineEdit::kChange && command.keep_law);
+    const std::string problem = ReadKey(command.key, law, &edit.key);
+    if (!problem.empty()) return problem;
+  }
+  const std::string problem = session_.ApplyTimeline(edit);
+  timeline_changed_ |= problem.empty();
+  return problem;
 }
 
 void CommandIntake::Drop(const std::string& channel, const std::string& reason) {
