@@ -1,7 +1,7 @@
-// flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, refresh), reads
-// its streams (params, status, watch, snapshot) and records sessions (record). This file is the
-// command line; flagctl_commands.cpp does the work.
-// Exit codes: 0 ok, 2 usage, 3 rejected by the server (its reason printed), 4 no answer.
+// flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, keyframe, refresh),
+// reads its streams (params, status, watch, snapshot, keyframe list) and records sessions (record). This file
+// is the command line; flagctl_commands.cpp does the work. Exit codes: 0 ok, 2 usage, 3 rejected by the
+// server (its reason printed), 4 no answer.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <csignal>
@@ -9,6 +9,7 @@
 
 #include "channels.hpp"
 #include "flagctl_commands.hpp"
+#include "flagctl_keyframe.hpp"
 
 namespace {
 
@@ -109,6 +110,9 @@ int main(int argc, char** argv) {
   size->add_option("height", camera_command.height, "px")->required();
   add_move("reset", "back to the scene's camera", camera_command_t::RESET);
 
+  KeyframeArguments keyframe;
+  AddKeyframeCommand(app, &keyframe);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -132,6 +136,7 @@ int main(int argc, char** argv) {
     if (command == "record") return Record(globals, record_path, record_duration);
     if (command == "snapshot") return Snapshot(globals, snapshot_path);
     if (command == "camera") return Camera(globals, camera_command);
+    if (command == "keyframe") return Keyframe(globals, keyframe);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());
     return 1;

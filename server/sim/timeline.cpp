@@ -242,6 +242,7 @@ bool Timeline::Remove(double time) {
 void Timeline::Clear() {
   keys_.clear();
   glide_.reset();
+  position_ = 0;
 }
 
 const Keyframe* Timeline::Find(double time) const {

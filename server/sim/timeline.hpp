@@ -86,6 +86,7 @@ class Timeline {
   bool Add(const Keyframe& key);
   /// Removes the key at `time`; false if there is none.
   bool Remove(double time);
+  /// Removes every key; the position goes back to 0 (play, loop and speed stay).
   void Clear();
   /// The key at exactly `time`, or nullptr.
   const Keyframe* Find(double time) const;

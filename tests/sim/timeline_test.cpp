@@ -197,8 +197,11 @@ TEST(Timeline, StopsAfterTheStepFromItsLastKeyUnlessItLoops) {
 }
 
 TEST(Timeline, WithoutKeysNothingMoves) {
-  Timeline timeline;
+  Timeline timeline = ThreeKeys(ControlLaw::kLinear);
   timeline.Play();
+  timeline.Seek(3);
+  timeline.Clear();
+  EXPECT_EQ(timeline.position(), 0);
   timeline.Advance(1);
   EXPECT_EQ(timeline.position(), 0);
   EXPECT_TRUE(timeline.playing());
