@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "checked_decode.hpp"
 #include "scene_timeline.hpp"
 #include "utime.hpp"
@@ -19,6 +21,21 @@ std::string CheckClientId(const std::string& client_id) {
     if (c < 0x21 || c > 0x7e) return "client_id: allowed printable ASCII without spaces";
   }
   return "";
+}
+
+/// A note for an accepted command that set the wind (`wind`) or parameters `names` of which a
+/// playing timeline drives some: "" if it drives none of them.
+std::string TimelineNote(const sim::Timeline& timeline, bool wind, const std::vector<std::string>& names) {
+  if (!timeline.playing()) return "";
+  const sim::Controls driven = timeline.Evaluate(timeline.position());
+  std::string overlap = wind && driven.wind ? "the wind" : "";
+  for (const sim::ParameterControl& parameter : driven.parameters) {
+    if (std::find(names.begin(), names.end(), parameter.name) != names.end())
+      overlap += (overlap.empty() ? "" : ", ") + parameter.name;
+  }
+  if (overlap.empty()) return "";
+  return "applied, but the playing timeline sets " + overlap +
+         " from the next step on (keyframe pause leaves them to commands)";
 }
 
 /// The timeline operation a KEYFRAME operation code names.
@@ -124,8 +141,10 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   ack.step = session_.simulation().state().step;
   ack.reason = CheckClientId(command->client_id);
   const int64_t recoveries = session_.simulation().recoveries();
+  note_.clear();
   if (ack.reason.empty()) ack.reason = (this->*apply)(*command);
   ack.accepted = ack.reason.empty();
+  if (ack.accepted) ack.reason = note_;
   if (ack.accepted) {
     ++stats_.commands_accepted;
     spdlog::info("{} from {} #{}: accepted at step {}", ack.channel, ack.client_id, ack.sequence, ack.step);
@@ -148,7 +167,8 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
 void CommandIntake::Answer(ack_t ack, int64_t recoveries_before) {
   const sim::GuardEvent& event = session_.simulation().last_guard_event();
   if (ack.accepted && session_.simulation().recoveries() > recoveries_before) {
-    ack.reason = "applied; then the guard caught the flag at " + event.Describe();
+    ack.reason = (ack.reason.empty() ? "" : ack.reason + "; ") +
+                 "applied; then the guard caught the flag at " + event.Describe();
     spdlog::warn("{} from {} #{}: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
   }
   ack.utime = UnixMicros();
@@ -178,7 +198,9 @@ std::string CommandIntake::ApplyWind(const wind_command_t& command) {
   wind.velocity = {command.velocity[0], command.velocity[1], command.velocity[2]};
   wind.gust = command.gust;
   wind.ramp_time = command.ramp_time;
-  return session_.ApplyWind(wind);
+  const std::string problem = session_.ApplyWind(wind);
+  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, true, {});
+  return problem;
 }
 
 std::string CommandIntake::ApplyParams(const param_command_t& command) {
@@ -190,6 +212,7 @@ std::string CommandIntake::ApplyParams(const param_command_t& command) {
   const std::string problem = session_.ApplyParams(change);
   params_changed_ |= problem.empty();
   timeline_changed_ |= problem.empty() && change.reset_to_scene;  // back to the scene's timeline
+  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, false, command.names);
   return problem;
 }
 

@@ -6,7 +6,8 @@
 //
 // Accepted WIND and PARAM commands are answered kSettleSteps steps later: if the guard had to
 // recover the flag in between, the ACK says what it found and did (the command is still
-// applied; the reason field carries the note).
+// applied; the reason field carries the note). So it does when a playing timeline drives what
+// the command set, which then lasts one step.
 #pragma once
 
 #include <cstdint>
@@ -84,6 +85,7 @@ class CommandIntake {
   std::vector<Settling> settling_;         ///< in the order they were applied
   bool params_changed_ = false;
   bool timeline_changed_ = false;
+  std::string note_;  ///< for the ACK of the command being applied, if it is accepted
   int64_t refresh_request_ = -1;
   double last_drop_log_ = -1;  ///< wall s of the last logged drop (drops are logged once a second)
   int64_t drops_since_log_ = 0;

@@ -418,5 +418,23 @@ TEST_F(CommandIntakeTest, TruncatedAndLyingKeyframeBytesAreDropped) {
   EXPECT_EQ(scene().timeline.keys().size(), 1u);
 }
 
+// A command that sets what a playing timeline drives is applied, and its ACK says for how long.
+TEST_F(CommandIntakeTest, TheAckSaysWhenAPlayingTimelineDrivesWhatACommandSet) {
+  ASSERT_EQ(client_.Send(channels_.keyframe, AddStiffness(0, 1000)).result, CommandOutcome::kAccepted);
+  CommandOutcome outcome = SetParams({"stiffness", "gravity"}, {"1200", "9"});
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted);
+  EXPECT_EQ(outcome.reason, "");  // paused: commands rule
+  ASSERT_EQ(client_.Send(channels_.keyframe, KeyframeCommand(keyframe_command_t::PLAY)).result,
+            CommandOutcome::kAccepted);
+  outcome = SetParams({"stiffness", "gravity"}, {"1300", "9"});
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted);
+  EXPECT_EQ(outcome.reason.rfind("applied, but the playing timeline sets stiffness from the next step", 0),
+            0u)
+      << outcome.reason;
+  outcome = client_.Send(channels_.wind, testing::SomeWindCommand());
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted);
+  EXPECT_EQ(outcome.reason, "");  // the timeline leaves the wind alone
+}
+
 }  // namespace
 }  // namespace flagsim
