@@ -116,7 +116,7 @@ class Timeline {
   /// Which stretch between keys `position` is in: the number of keys at or before it.
   int SegmentAt(double position) const;
   /// For each parameter some key sets: the least and most it takes over the segment that holds
-  /// `position` (cubic overshoot included), and the value a glide under way starts from.
+  /// `position` (cubic overshoot included), widened by the jump a glide under way has left.
   std::vector<ParameterRange> ParameterRanges(double position) const;
 
   /// From now on, the controls glide from `from` (the values in force) to the timeline's over
