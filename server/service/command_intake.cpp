@@ -23,12 +23,21 @@ std::string CheckClientId(const std::string& client_id) {
   return "";
 }
 
-/// A note for an accepted command that set the wind (`wind`) or parameters `names` of which a
-/// playing timeline drives some: "" if it drives none of them.
-std::string TimelineNote(const sim::Timeline& timeline, bool wind, const std::vector<std::string>& names) {
+/// What an accepted command set: the wind, the camera, parameters by name.
+struct CommandSets {
+  bool wind = false;
+  bool camera = false;
+  std::vector<std::string> names;
+};
+
+/// A note for an accepted command that set controls a playing timeline drives: "" if it drives
+/// none of them.
+std::string TimelineNote(const sim::Timeline& timeline, const CommandSets& sets) {
   if (!timeline.playing()) return "";
   const sim::Controls driven = timeline.Evaluate(timeline.position());
-  std::string overlap = wind && driven.wind ? "the wind" : "";
+  std::string overlap = sets.wind && driven.wind ? "the wind" : "";
+  if (sets.camera && driven.camera) overlap += (overlap.empty() ? "" : ", ") + std::string("the camera");
+  const std::vector<std::string>& names = sets.names;
   for (const sim::ParameterControl& parameter : driven.parameters) {
     if (std::find(names.begin(), names.end(), parameter.name) != names.end())
       overlap += (overlap.empty() ? "" : ", ") + parameter.name;
@@ -199,7 +208,7 @@ std::string CommandIntake::ApplyWind(const wind_command_t& command) {
   wind.gust = command.gust;
   wind.ramp_time = command.ramp_time;
   const std::string problem = session_.ApplyWind(wind);
-  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, true, {});
+  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {true, false, {}});
   return problem;
 }
 
@@ -212,7 +221,7 @@ std::string CommandIntake::ApplyParams(const param_command_t& command) {
   const std::string problem = session_.ApplyParams(change);
   params_changed_ |= problem.empty();
   timeline_changed_ |= problem.empty() && change.reset_to_scene;  // back to the scene's timeline
-  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, false, command.names);
+  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {false, false, command.names});
   return problem;
 }
 
@@ -231,7 +240,10 @@ std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
   move.factor = command.factor;
   move.width = command.width;
   move.height = command.height;
-  return session_.ApplyCamera(move);
+  const std::string problem = session_.ApplyCamera(move);
+  const bool moves = move.operation != render::CameraMove::kSetImageSize;  // the size is no control
+  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {false, moves, {}});
+  return problem;
 }
 
 std::string CommandIntake::ApplyKeyframe(const keyframe_command_t& command) {

@@ -6,8 +6,8 @@
 //
 // Accepted WIND and PARAM commands are answered kSettleSteps steps later: if the guard had to
 // recover the flag in between, the ACK says what it found and did (the command is still
-// applied; the reason field carries the note). So it does when a playing timeline drives what
-// the command set, which then lasts one step.
+// applied; the reason field carries the note). So does the ACK of a WIND, PARAM or CAMERA
+// command that set what a playing timeline drives, which then lasts one step.
 #pragma once
 
 #include <cstdint>

@@ -434,6 +434,20 @@ TEST_F(CommandIntakeTest, TheAckSaysWhenAPlayingTimelineDrivesWhatACommandSet) {
   outcome = client_.Send(channels_.wind, testing::SomeWindCommand());
   EXPECT_EQ(outcome.result, CommandOutcome::kAccepted);
   EXPECT_EQ(outcome.reason, "");  // the timeline leaves the wind alone
+
+  keyframe_command_t camera = AddStiffness(1, 1000);
+  camera.key.has_camera = true;
+  camera.key.camera_eye[2] = 5;
+  camera.key.camera_target[1] = 2;
+  camera.key.camera_fov = 40;
+  ASSERT_EQ(client_.Send(channels_.keyframe, camera).result, CommandOutcome::kAccepted);
+  camera_command_t orbit{};
+  orbit.operation = camera_command_t::ORBIT;
+  orbit.angle = 0.3;
+  outcome = client_.Send(channels_.camera, orbit);
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted);
+  EXPECT_EQ(outcome.reason.rfind("applied, but the playing timeline sets the camera", 0), 0u)
+      << outcome.reason;
 }
 
 }  // namespace
