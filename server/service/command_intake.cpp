@@ -241,7 +241,10 @@ std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
   move.width = command.width;
   move.height = command.height;
   const std::string problem = session_.ApplyCamera(move);
-  const bool moves = move.operation != render::CameraMove::kSetImageSize;  // the size is no control
+  // The moves of eye and target (a timeline's camera); rotations and scaling of the scene stay.
+  const bool moves =
+      move.operation == render::CameraMove::kTranslate || move.operation == render::CameraMove::kOrbit ||
+      move.operation == render::CameraMove::kLookAt || move.operation == render::CameraMove::kReset;
   if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {false, moves, {}});
   return problem;
 }
