@@ -13,6 +13,7 @@
 #include "flagsim/frame_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
+#include "flagsim/timeline_t.hpp"
 #include "flagsim/wind_command_t.hpp"
 #include "log_recorder.hpp"
 #include "png_file.hpp"
@@ -239,6 +240,20 @@ int Camera(const Globals& globals, camera_command_t command) {
   Link link(globals);
   CommandClient client(link.bus, link.channels, globals.timeout);
   return Report(link, client.Send(link.channels.camera, command));
+}
+
+int SendKeyframe(const Globals& globals, const keyframe_command_t& command) {
+  Link link(globals);
+  CommandClient client(link.bus, link.channels, globals.timeout);
+  return Report(link, client.Send(link.channels.keyframe, command));
+}
+
+int Timeline(const Globals& globals) {
+  Link link(globals);
+  const auto timeline = AwaitMessage<timeline_t>(link.bus, link.channels.timeline, globals.timeout);
+  if (!timeline) return link.NoAnswer("TIMELINE");
+  PrintTimeline(*timeline, std::cout);
+  return kOk;
 }
 
 /// Records every channel with the prefix to an LCM log until `duration` or an interrupt.

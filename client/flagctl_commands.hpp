@@ -9,6 +9,7 @@
 
 #include "channels.hpp"
 #include "flagsim/camera_command_t.hpp"
+#include "flagsim/keyframe_command_t.hpp"
 
 namespace flagsim {
 
@@ -35,6 +36,10 @@ int Watch(const Globals& globals, double duration);
 /// A keyframe, assembled and hash-checked, written as a PNG.
 int Snapshot(const Globals& globals, const std::string& path);
 int Camera(const Globals& globals, camera_command_t command);
+/// One KEYFRAME command (flagctl_keyframe.hpp builds it from the command line).
+int SendKeyframe(const Globals& globals, const keyframe_command_t& command);
+/// The next TIMELINE message, printed: play state and every key with what it sets.
+int Timeline(const Globals& globals);
 /// Every channel with the prefix into an LCM log until `duration` s (0: until interrupted).
 int Record(const Globals& globals, const std::string& path, double duration);
 

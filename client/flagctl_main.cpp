@@ -1,7 +1,7 @@
-// flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, refresh), reads
-// its streams (params, status, watch, snapshot), records sessions (record) and turns logs into
-// pictures (export). This file is the command line; flagctl_commands.cpp and
-// flagctl_export.cpp do the work.
+// flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, keyframe, refresh),
+// reads its streams (params, status, watch, snapshot, keyframe list), records sessions (record)
+// and turns logs into pictures (export). This file is the command line; flagctl_commands.cpp,
+// flagctl_keyframe.cpp and flagctl_export.cpp do the work.
 // Exit codes: 0 ok, 1 failed, 2 usage, 3 rejected by the server (its reason printed), 4 no
 // answer, 5 nothing to export.
 #include <CLI/CLI.hpp>
@@ -11,6 +11,7 @@
 
 #include "channels.hpp"
 #include "flagctl_commands.hpp"
+#include "flagctl_keyframe.hpp"
 
 namespace {
 
@@ -139,6 +140,9 @@ int main(int argc, char** argv) {
   size->add_option("height", camera_command.height, "px")->required();
   add_move("reset", "back to the scene's camera", camera_command_t::RESET);
 
+  KeyframeArguments keyframe;
+  AddKeyframeCommand(app, &keyframe);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -163,6 +167,7 @@ int main(int argc, char** argv) {
     if (command == "snapshot") return Snapshot(globals, snapshot_path);
     if (command == "camera") return Camera(globals, camera_command);
     if (command == "export") return Export(globals, export_request);
+    if (command == "keyframe") return Keyframe(globals, keyframe);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());
     return 1;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <vector>
 
 namespace flagsim {
 namespace {
@@ -85,6 +86,55 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;
   if (!status.last_recovery.empty()) out << "last recovery:     " << status.last_recovery << "\n";
+}
+
+namespace {
+
+std::string Triple(const double (&v)[3]) { return Number(v[0]) + " " + Number(v[1]) + " " + Number(v[2]); }
+
+std::string LawName(int8_t law) {
+  static const char* const names[] = {"step", "linear", "smooth", "cubic"};  // LAW_* order
+  return law >= 0 && law < 4 ? names[law] : Number(law);
+}
+
+/// time, law, wind, gust, camera, parameters: one key's columns.
+std::vector<std::string> KeyColumns(const timeline_key_t& key) {
+  std::string parameters;
+  for (size_t i = 0; i < key.names.size() && i < key.values.size(); ++i) {
+    parameters += (i ? " " : "") + key.names[i] + "=" + Number(key.values[i]);
+  }
+  return {Number(key.time),
+          LawName(key.law),
+          key.has_wind ? Triple(key.wind_velocity) : "-",
+          key.has_wind ? Number(key.wind_gust) : "-",
+          key.has_camera ? "eye " + Triple(key.camera_eye) + ", target " + Triple(key.camera_target) +
+                               ", fov " + Number(key.camera_fov)
+                         : "-",
+          parameters.empty() ? "-" : parameters};
+}
+
+}  // namespace
+
+void PrintTimeline(const timeline_t& timeline, std::ostream& out) {
+  out << (timeline.playing ? "playing" : "paused") << " at " << Number(timeline.position) << " s of "
+      << Number(timeline.end) << " s, speed " << Number(timeline.speed) << ", loop "
+      << (timeline.loop ? "on" : "off") << (timeline.gliding ? ", gliding" : "") << ", " << timeline.num_keys
+      << " key(s)\n";
+  if (timeline.keys.empty()) return;
+  std::vector<std::vector<std::string>> rows = {
+      {"time", "law", "wind m/s", "gust", "camera m, deg", "parameters"}};
+  for (const timeline_key_t& key : timeline.keys) rows.push_back(KeyColumns(key));
+  std::vector<size_t> widths(rows[0].size(), 0);
+  for (const auto& row : rows) {
+    for (size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
+  }
+  for (const auto& row : rows) {
+    std::string line;
+    for (size_t c = 0; c < row.size(); ++c) {
+      line += row[c] + (c + 1 < row.size() ? std::string(widths[c] - row[c].size() + 2, ' ') : "");
+    }
+    out << line << "\n";
+  }
 }
 
 std::string TipText(const state_t& state) {

@@ -14,7 +14,8 @@ Channels::Channels(const std::string& prefix_in)
       tile(prefix + "TILE"),
       frame(prefix + "FRAME"),
       params(prefix + "PARAMS"),
-      status(prefix + "STATUS") {}
+      status(prefix + "STATUS"),
+      timeline(prefix + "TIMELINE") {}
 
 std::string Channels::Unprefixed(const std::string& channel) const {
   return channel.compare(0, prefix.size(), prefix) == 0 ? channel.substr(prefix.size()) : channel;

@@ -18,12 +18,13 @@ struct Channels {
   std::string keyframe;  ///< keyframe_command_t
   std::string refresh;   ///< refresh_request_t
   // server -> clients
-  std::string ack;     ///< ack_t
-  std::string state;   ///< state_t
-  std::string tile;    ///< tile_t
-  std::string frame;   ///< frame_t
-  std::string params;  ///< params_t
-  std::string status;  ///< status_t
+  std::string ack;       ///< ack_t
+  std::string state;     ///< state_t
+  std::string tile;      ///< tile_t
+  std::string frame;     ///< frame_t
+  std::string params;    ///< params_t
+  std::string status;    ///< status_t
+  std::string timeline;  ///< timeline_t
 
   /// "FLAGSIM_WIND" -> "WIND"; a channel without the prefix comes back unchanged.
   std::string Unprefixed(const std::string& channel) const;

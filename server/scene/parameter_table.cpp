@@ -169,10 +169,15 @@ ParameterTable::ParameterTable() {
       Make("shading", "", ParameterKind::kChoice, 0, double(render::ShadingModeNames().size() - 1),
            &Scene::service, &ServiceSettings::shading, "how frames are shaded"),
   };
-  // The names of each choice parameter.
+  // The names of each choice parameter; the forces' coefficients that keyframes may move (what
+  // Simulation::SetControls takes).
   for (Parameter& parameter : parameters_) {
     if (parameter.name == "integrator") parameter.choices = sim::IntegratorNames();
     if (parameter.name == "shading") parameter.choices = render::ShadingModeNames();
+    for (const char* name : {"stiffness", "shear_stiffness", "bend_stiffness", "damping", "friction",
+                             "wind_coefficient", "gravity"}) {
+      parameter.animatable |= parameter.name == name;
+    }
   }
 }
 

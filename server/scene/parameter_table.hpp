@@ -20,6 +20,9 @@ struct Parameter {
   double min_value = 0;  ///< inclusive; for kChoice an index range
   double max_value = 0;
   std::vector<std::string> choices;  ///< kChoice: the names, value = index
+  /// Whether a keyframe may set it: a continuous coefficient of the forces, which a step can
+  /// change in place (server/scene/scene_timeline.hpp).
+  bool animatable = false;
   std::string description;
   std::function<double(const Scene&)> get;
   std::function<void(Scene&, double)> set;

@@ -8,6 +8,7 @@
 #include "render/camera.hpp"
 #include "render/shading_mode.hpp"
 #include "sim/sim_params.hpp"
+#include "sim/timeline.hpp"
 #include "sim/wind_field.hpp"
 
 namespace flagsim {
@@ -25,7 +26,8 @@ struct Scene {
   sim::SimParams sim;
   sim::WindSettings wind;
   ServiceSettings service;
-  render::Camera camera;  ///< where frames are seen from, and their size
+  render::Camera camera;   ///< where frames are seen from, and their size
+  sim::Timeline timeline;  ///< keyframes driving wind, parameters and camera; empty by default
 };
 
 }  // namespace flagsim

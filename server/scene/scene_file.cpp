@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -11,6 +12,7 @@
 
 #include "parameter_table.hpp"
 #include "render/camera_moves.hpp"
+#include "scene_timeline.hpp"
 
 namespace flagsim {
 
@@ -123,6 +125,129 @@ const toml::table& Table(const toml::node& node, const std::string& what, const 
   throw SceneError(Where(source, node) + what + " must be a table, [" + what + "]");
 }
 
+sim::Vec3 Triple(const toml::node& node, const std::string& what, const std::string& unit,
+                 const std::string& source) {
+  const toml::array* array = node.as_array();
+  if (array == nullptr || array->size() != 3)
+    throw SceneError(Where(source, node) + what + " must be [x, y, z] in " + unit);
+  sim::Vec3 triple;
+  for (int k = 0; k < 3; ++k) triple[k] = Number(*array->get(k), what, source);
+  return triple;
+}
+
+bool Switch(const toml::node& node, const std::string& what, const std::string& source) {
+  if (const auto* value = node.as_boolean()) return value->get();
+  throw SceneError(Where(source, node) + what + " must be true or false");
+}
+
+sim::ControlLaw Law(const toml::node& node, const std::string& what, const std::string& source) {
+  const auto& names = sim::ControlLawNames();
+  const auto name = node.value<std::string>();
+  const auto found = name ? std::find(names.begin(), names.end(), *name) : names.end();
+  if (found == names.end()) {
+    throw SceneError(Where(source, node) + what + " must be one of: step, linear, smooth, cubic");
+  }
+  return static_cast<sim::ControlLaw>(found - names.begin());
+}
+
+/// camera = { eye = [x, y, z], target = [x, y, z], fov = degrees }, all three.
+sim::CameraControl KeyCamera(const toml::table& table, const std::string& what, const std::string& source) {
+  for (const char* needed : {"eye", "target", "fov"}) {
+    if (!table.contains(needed)) {
+      throw SceneError(Where(source, table) + what + " needs eye, target and fov; " + needed + " is missing");
+    }
+  }
+  sim::CameraControl camera;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    if (name == "eye") {
+      camera.eye = Triple(node, what + ".eye", "m", source);
+    } else if (name == "target") {
+      camera.target = Triple(node, what + ".target", "m", source);
+    } else if (name == "fov") {
+      camera.fov = Number(node, what + ".fov", source);
+    } else {
+      throw SceneError(Where(source, node) + "unknown key " + what + "." + name +
+                       "; known: eye, target, fov");
+    }
+  }
+  return camera;
+}
+
+/// One [[timeline.keys]] table: time, law, wind, gust, parameters, camera.
+sim::Keyframe ReadKey(const toml::table& table, const std::string& what, const std::string& source) {
+  sim::Keyframe key;
+  bool has_time = false;
+  const toml::node* gust = nullptr;
+  for (const auto& [name_view, node] : table) {
+    const std::string name(name_view.str());
+    if (name == "time") {
+      key.time = Number(node, what + ".time", source);
+      has_time = true;
+    } else if (name == "law") {
+      key.law = Law(node, what + ".law", source);
+    } else if (name == "wind") {
+      key.wind = sim::WindControl{Triple(node, what + ".wind", "m/s", source), 0};
+    } else if (name == "gust") {
+      gust = &node;
+    } else if (name == "parameters") {
+      for (const auto& [parameter_view, value] : Table(node, what + ".parameters", source)) {
+        const std::string parameter(parameter_view.str());
+        key.parameters.push_back({parameter, Number(value, what + ".parameters." + parameter, source)});
+      }
+    } else if (name == "camera") {
+      key.camera = KeyCamera(Table(node, what + ".camera", source), what + ".camera", source);
+    } else {
+      throw SceneError(Where(source, node) + "unknown key " + what + "." + name +
+                       "; known: time, law, wind, gust, parameters, camera");
+    }
+  }
+  if (!has_time) throw SceneError(Where(source, table) + what + ".time is missing (s)");
+  if (gust != nullptr) {
+    if (!key.wind)
+      throw SceneError(Where(source, *gust) + what + ".gust needs wind = [vx, vy, vz] in the key");
+    key.wind->gust = Number(*gust, what + ".gust", source);
+  }
+  const std::string problem = CheckKeyframe(key, what);
+  if (!problem.empty()) throw SceneError(Where(source, table) + problem);
+  return key;
+}
+
+void ReadTimeline(const toml::table& table, const std::string& source, Scene* scene) {
+  sim::Timeline& timeline = scene->timeline;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    if (name == "play") {
+      if (Switch(node, "timeline.play", source)) timeline.Play();
+    } else if (name == "loop") {
+      timeline.SetLoop(Switch(node, "timeline.loop", source));
+    } else if (name == "speed") {
+      timeline.SetSpeed(Number(node, "timeline.speed", source));
+    } else if (name == "keys") {
+      const toml::array* keys = node.as_array();
+      if (keys == nullptr || !keys->is_array_of_tables()) {
+        throw SceneError(Where(source, node) + "timeline.keys must be tables, [[timeline.keys]]");
+      }
+      if (keys->size() > TimelineLimits::kMaxKeys) {
+        throw SceneError(Where(source, node) + "timeline.keys: " + std::to_string(keys->size()) +
+                         " of them; allowed at most " + std::to_string(TimelineLimits::kMaxKeys));
+      }
+      for (size_t i = 0; i < keys->size(); ++i) {
+        const std::string what = "timeline.keys[" + std::to_string(i) + "]";
+        const sim::Keyframe frame = ReadKey(*keys->get(i)->as_table(), what, source);
+        if (timeline.Find(frame.time) != nullptr) {
+          throw SceneError(Where(source, *keys->get(i)) + what + ".time: " +
+                           ValueText(*keys->get(i)->as_table()->get("time")) + " s already has a key");
+        }
+        timeline.Add(frame);
+      }
+    } else {
+      throw SceneError(Where(source, node) + "unknown key timeline." + name +
+                       "; known: play, loop, speed, keys");
+    }
+  }
+}
+
 }  // namespace
 
 Scene ParseScene(const std::string& text, const std::string& source) {
@@ -150,15 +275,19 @@ Scene ParseScene(const std::string& text, const std::string& source) {
       ReadWind(Table(node, name, source), source, &scene);
     } else if (name == "camera") {
       ReadCamera(Table(node, name, source), source, &scene);
+    } else if (name == "timeline") {
+      ReadTimeline(Table(node, name, source), source, &scene);
     } else {
       throw SceneError(Where(source, node) + "unknown key '" + name +
-                       "'; known: name, description, seed, [parameters], [wind], [camera]");
+                       "'; known: name, description, seed, [parameters], [wind], [camera], [timeline]");
     }
   }
   for (const std::string& problem :
        {ParameterTable::CheckConsistency(scene), ParameterTable::CheckWind(scene.wind)}) {
     if (!problem.empty()) throw SceneError(source + ": " + problem);
   }
+  const std::string problem = CheckTimeline(scene.timeline, scene);
+  if (!problem.empty()) throw SceneError(source + ": timeline." + problem);
   return scene;
 }
 

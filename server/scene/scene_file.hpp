@@ -5,6 +5,12 @@
 //   [parameters]   any name of the parameter table, e.g.  stiffness = 4000
 //   [wind]         velocity = [vx, vy, vz] (m/s)   gust = 0.4   ramp_time = 0 (s)
 //   [camera]       eye = [x, y, z]   target = [x, y, z] (m)   fov = 40 (degrees)   width, height (px)
+//   [timeline]     play = false   loop = false   speed = 1 (timeline s per simulated s)
+//   [[timeline.keys]]   time = 0 (s)   law = "linear" (step, linear, smooth, cubic)
+//                  wind = [vx, vy, vz] (m/s)   gust = 0 (needs wind)
+//                  parameters = { stiffness = 1500 }   (animatable parameters only)
+//                  camera = { eye = [x, y, z], target = [x, y, z], fov = 40 }  (all three)
+//                  a key sets any of wind, parameters and camera; see scene_timeline.hpp
 #pragma once
 
 #include <stdexcept>

@@ -2,7 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "checked_decode.hpp"
+#include "scene_timeline.hpp"
 #include "utime.hpp"
 
 namespace flagsim {
@@ -20,6 +23,89 @@ std::string CheckClientId(const std::string& client_id) {
   return "";
 }
 
+/// What an accepted command set: the wind, the camera, parameters by name.
+struct CommandSets {
+  bool wind = false;
+  bool camera = false;
+  std::vector<std::string> names;
+};
+
+/// A note for an accepted command that set controls a playing timeline drives: "" if it drives
+/// none of them.
+std::string TimelineNote(const sim::Timeline& timeline, const CommandSets& sets) {
+  if (!timeline.playing()) return "";
+  const sim::Controls driven = timeline.Evaluate(timeline.position());
+  std::string overlap = sets.wind && driven.wind ? "the wind" : "";
+  if (sets.camera && driven.camera) overlap += (overlap.empty() ? "" : ", ") + std::string("the camera");
+  const std::vector<std::string>& names = sets.names;
+  for (const sim::ParameterControl& parameter : driven.parameters) {
+    if (std::find(names.begin(), names.end(), parameter.name) != names.end())
+      overlap += (overlap.empty() ? "" : ", ") + parameter.name;
+  }
+  if (overlap.empty()) return "";
+  return "applied, but the playing timeline sets " + overlap +
+         " from the next step on (keyframe pause leaves them to commands)";
+}
+
+/// The timeline operation a KEYFRAME operation code names.
+std::optional<TimelineEdit::Operation> OperationOf(int8_t operation) {
+  switch (operation) {
+    case keyframe_command_t::ADD:
+      return TimelineEdit::kAdd;
+    case keyframe_command_t::CHANGE:
+      return TimelineEdit::kChange;
+    case keyframe_command_t::REMOVE:
+      return TimelineEdit::kRemove;
+    case keyframe_command_t::CLEAR:
+      return TimelineEdit::kClear;
+    case keyframe_command_t::PLAY:
+      return TimelineEdit::kPlay;
+    case keyframe_command_t::PAUSE:
+      return TimelineEdit::kPause;
+    case keyframe_command_t::SEEK:
+      return TimelineEdit::kSeek;
+    case keyframe_command_t::LOOP:
+      return TimelineEdit::kLoop;
+    case keyframe_command_t::SPEED:
+      return TimelineEdit::kSpeed;
+    default:
+      return std::nullopt;
+  }
+}
+
+/// The wire's key as the timeline's; "" or what is wrong with it as sent (its values are checked
+/// with the timeline). `law`: whether key.law is read.
+std::string ReadKey(const timeline_key_t& message, bool law, sim::Keyframe* key) {
+  if (law && (message.law < timeline_key_t::LAW_STEP || message.law > timeline_key_t::LAW_CUBIC)) {
+    return "key.law: " + std::to_string(message.law) +
+           " is not a law; allowed 0 (step), 1 (linear), 2 (smooth), 3 (cubic)";
+  }
+  if (message.num_parameters < 0 || size_t(message.num_parameters) > TimelineLimits::kMaxKeyParameters) {
+    return "key.num_parameters: " + std::to_string(message.num_parameters) + "; allowed 0 .. " +
+           std::to_string(TimelineLimits::kMaxKeyParameters);
+  }
+  key->time = message.time;
+  if (law) key->law = static_cast<sim::ControlLaw>(message.law);
+  if (message.has_wind) {
+    key->wind = sim::WindControl{
+        {message.wind_velocity[0], message.wind_velocity[1], message.wind_velocity[2]}, message.wind_gust};
+  }
+  for (size_t i = 0; i < message.names.size() && i < message.values.size(); ++i) {
+    if (message.names[i].size() > CommandIntake::kMaxNameLength) {
+      return "key.names[" + std::to_string(i) + "]: " + std::to_string(message.names[i].size()) +
+             " characters; allowed up to " + std::to_string(CommandIntake::kMaxNameLength);
+    }
+    key->parameters.push_back({message.names[i], message.values[i]});
+  }
+  if (message.has_camera) {
+    const auto& eye = message.camera_eye;
+    const auto& target = message.camera_target;
+    key->camera =
+        sim::CameraControl{{eye[0], eye[1], eye[2]}, {target[0], target[1], target[2]}, message.camera_fov};
+  }
+  return "";
+}
+
 }  // namespace
 
 CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats)
@@ -28,6 +114,7 @@ CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& sessio
   Subscribe<param_command_t>(channels.param, &CommandIntake::ApplyParams);
   Subscribe<refresh_request_t>(channels.refresh, &CommandIntake::ApplyRefresh);
   Subscribe<camera_command_t>(channels.camera, &CommandIntake::ApplyCamera);
+  Subscribe<keyframe_command_t>(channels.keyframe, &CommandIntake::ApplyKeyframe);
 }
 
 template <class Command>
@@ -63,8 +150,10 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   ack.step = session_.simulation().state().step;
   ack.reason = CheckClientId(command->client_id);
   const int64_t recoveries = session_.simulation().recoveries();
+  note_.clear();
   if (ack.reason.empty()) ack.reason = (this->*apply)(*command);
   ack.accepted = ack.reason.empty();
+  if (ack.accepted) ack.reason = note_;
   if (ack.accepted) {
     ++stats_.commands_accepted;
     spdlog::info("{} from {} #{}: accepted at step {}", ack.channel, ack.client_id, ack.sequence, ack.step);
@@ -87,7 +176,8 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
 void CommandIntake::Answer(ack_t ack, int64_t recoveries_before) {
   const sim::GuardEvent& event = session_.simulation().last_guard_event();
   if (ack.accepted && session_.simulation().recoveries() > recoveries_before) {
-    ack.reason = "applied; then the guard caught the flag at " + event.Describe();
+    ack.reason = (ack.reason.empty() ? "" : ack.reason + "; ") +
+                 "applied; then the guard caught the flag at " + event.Describe();
     spdlog::warn("{} from {} #{}: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
   }
   ack.utime = UnixMicros();
@@ -117,7 +207,9 @@ std::string CommandIntake::ApplyWind(const wind_command_t& command) {
   wind.velocity = {command.velocity[0], command.velocity[1], command.velocity[2]};
   wind.gust = command.gust;
   wind.ramp_time = command.ramp_time;
-  return session_.ApplyWind(wind);
+  const std::string problem = session_.ApplyWind(wind);
+  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {true, false, {}});
+  return problem;
 }
 
 std::string CommandIntake::ApplyParams(const param_command_t& command) {
@@ -128,6 +220,8 @@ std::string CommandIntake::ApplyParams(const param_command_t& command) {
   }
   const std::string problem = session_.ApplyParams(change);
   params_changed_ |= problem.empty();
+  timeline_changed_ |= problem.empty() && change.reset_to_scene;  // back to the scene's timeline
+  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {false, false, command.names});
   return problem;
 }
 
@@ -146,7 +240,36 @@ std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
   move.factor = command.factor;
   move.width = command.width;
   move.height = command.height;
-  return session_.ApplyCamera(move);
+  const std::string problem = session_.ApplyCamera(move);
+  // The moves of eye and target (a timeline's camera); rotations and scaling of the scene stay.
+  const bool moves =
+      move.operation == render::CameraMove::kTranslate || move.operation == render::CameraMove::kOrbit ||
+      move.operation == render::CameraMove::kLookAt || move.operation == render::CameraMove::kReset;
+  if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {false, moves, {}});
+  return problem;
+}
+
+std::string CommandIntake::ApplyKeyframe(const keyframe_command_t& command) {
+  const std::optional<TimelineEdit::Operation> operation = OperationOf(command.operation);
+  if (!operation) {
+    return "operation: " + std::to_string(command.operation) +
+           " is not known; allowed 1 ADD, 2 REMOVE, 3 CLEAR, 4 PLAY, 5 PAUSE, 6 SEEK, 7 LOOP, 8 SPEED, 9 "
+           "CHANGE";
+  }
+  TimelineEdit edit;
+  edit.operation = *operation;
+  edit.time = command.time;
+  edit.speed = command.speed;
+  edit.loop = command.loop;
+  edit.keep_law = command.keep_law;
+  if (edit.operation == TimelineEdit::kAdd || edit.operation == TimelineEdit::kChange) {
+    const bool law = !(edit.operation == TimelineEdit::kChange && command.keep_law);
+    const std::string problem = ReadKey(command.key, law, &edit.key);
+    if (!problem.empty()) return problem;
+  }
+  const std::string problem = session_.ApplyTimeline(edit);
+  timeline_changed_ |= problem.empty();
+  return problem;
 }
 
 void CommandIntake::Drop(const std::string& channel, const std::string& reason) {

@@ -1,12 +1,13 @@
-// Command intake: the server's command channels. Each message is decoded from raw bytes with
-// every length checked (wire::CheckedDecode), answered on ACK, and applied to the session only
-// if valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the
+// Command intake: the server's command channels (WIND, PARAM, CAMERA, KEYFRAME, REFRESH). Each message is
+// decoded from raw bytes with every length checked (wire::CheckedDecode), answered on ACK, and applied to the
+// session only if valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the
 // server. A retry (same client id and sequence) gets the first answer again and is not
 // applied twice.
 //
 // Accepted WIND and PARAM commands are answered kSettleSteps steps later: if the guard had to
 // recover the flag in between, the ACK says what it found and did (the command is still
-// applied; the reason field carries the note).
+// applied; the reason field carries the note). So does the ACK of a WIND, PARAM or CAMERA
+// command that set what a playing timeline drives, which then lasts one step.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include "channels.hpp"
 #include "flagsim/ack_t.hpp"
 #include "flagsim/camera_command_t.hpp"
+#include "flagsim/keyframe_command_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "flagsim/wind_command_t.hpp"
@@ -31,13 +33,16 @@ class CommandIntake {
  public:
   static constexpr size_t kMaxCommandBytes = 64 * 1024;
   static constexpr size_t kMaxClientIdLength = 64;
-  static constexpr int kQueueCapacity = 256;  ///< per channel, between two Handle() calls
+  static constexpr size_t kMaxNameLength = 64;  ///< characters of a parameter name in a key
+  static constexpr int kQueueCapacity = 256;    ///< per channel, between two Handle() calls
 
   /// Subscribes to the command channels on `bus`; handlers run inside bus.Handle().
   CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats);
 
   /// True once after any accepted command that changed parameters (PARAMS is due).
   bool TakeParamsChanged() { return std::exchange(params_changed_, false); }
+  /// True once after any accepted command that changed the timeline (TIMELINE is due).
+  bool TakeTimelineChanged() { return std::exchange(timeline_changed_, false); }
   /// After each step: answers the commands whose settling window has passed.
   void AfterStep();
   /// Answers every command still settling (the server is about to stop).
@@ -60,6 +65,7 @@ class CommandIntake {
   std::string ApplyParams(const param_command_t& command);
   std::string ApplyRefresh(const refresh_request_t& command);
   std::string ApplyCamera(const camera_command_t& command);
+  std::string ApplyKeyframe(const keyframe_command_t& command);
 
   void Drop(const std::string& channel, const std::string& reason);
   void Answer(ack_t ack, int64_t recoveries_before);
@@ -78,6 +84,8 @@ class CommandIntake {
   std::map<std::string, ack_t> last_ack_;  ///< per client id: the answer to its latest command
   std::vector<Settling> settling_;         ///< in the order they were applied
   bool params_changed_ = false;
+  bool timeline_changed_ = false;
+  std::string note_;  ///< for the ACK of the command being applied, if it is accepted
   int64_t refresh_request_ = -1;
   double last_drop_log_ = -1;  ///< wall s of the last logged drop (drops are logged once a second)
   int64_t drops_since_log_ = 0;

@@ -70,6 +70,50 @@ params_t MakeParamsMessage(const Scene& scene, int64_t utime) {
   return message;
 }
 
+namespace {
+
+timeline_key_t MakeKeyMessage(const sim::Keyframe& key) {
+  timeline_key_t message{};
+  message.time = key.time;
+  message.law = static_cast<int8_t>(key.law);  // ControlLaw's order is the LAW_* constants'
+  message.has_wind = key.wind.has_value();
+  if (key.wind) {
+    for (int k = 0; k < 3; ++k) message.wind_velocity[k] = key.wind->velocity[k];
+    message.wind_gust = key.wind->gust;
+  }
+  for (const sim::ParameterControl& parameter : key.parameters) {
+    message.names.push_back(parameter.name);
+    message.values.push_back(parameter.value);
+  }
+  message.num_parameters = static_cast<int32_t>(message.names.size());
+  message.has_camera = key.camera.has_value();
+  if (key.camera) {
+    for (int k = 0; k < 3; ++k) {
+      message.camera_eye[k] = key.camera->eye[k];
+      message.camera_target[k] = key.camera->target[k];
+    }
+    message.camera_fov = key.camera->fov;
+  }
+  return message;
+}
+
+}  // namespace
+
+timeline_t MakeTimelineMessage(const sim::Timeline& timeline, int64_t step, int64_t utime) {
+  timeline_t message{};
+  message.utime = utime;
+  message.step = step;
+  message.playing = timeline.playing();
+  message.position = timeline.position();
+  message.speed = timeline.speed();
+  message.loop = timeline.loop();
+  message.end = timeline.End();
+  message.gliding = timeline.gliding();
+  for (const sim::Keyframe& key : timeline.keys()) message.keys.push_back(MakeKeyMessage(key));
+  message.num_keys = static_cast<int32_t>(message.keys.size());
+  return message;
+}
+
 status_t MakeStatusMessage(const Session& session, const ServerStats& stats, const StatusWindow& window,
                            int64_t utime) {
   const FlagSimulation& simulation = session.simulation();

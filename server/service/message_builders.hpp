@@ -1,4 +1,4 @@
-// Outgoing messages built from the session: STATE, PARAMS, STATUS, and what a frame's
+// Outgoing messages built from the session: STATE, PARAMS, STATUS, TIMELINE, and what a frame's
 // manifest says of the session. Pure functions of what they read, so tests can check them
 // without a bus.
 #pragma once
@@ -8,6 +8,7 @@
 #include "flagsim/params_t.hpp"
 #include "flagsim/state_t.hpp"
 #include "flagsim/status_t.hpp"
+#include "flagsim/timeline_t.hpp"
 #include "server_stats.hpp"
 #include "session.hpp"
 #include "tile_stream.hpp"
@@ -26,6 +27,9 @@ FrameInfo MakeFrameInfo(const Session& session, int64_t utime);
 
 /// The parameter table with the session's current values.
 params_t MakeParamsMessage(const Scene& scene, int64_t utime);
+
+/// The timeline: its keys (what each sets), play state and position; `step` the step it stands at.
+timeline_t MakeTimelineMessage(const sim::Timeline& timeline, int64_t step, int64_t utime);
 
 /// What passed since the last STATUS.
 struct StatusWindow {

@@ -95,8 +95,10 @@ void Server::PublishDue(double now) {
     frame_due_ = true;  // the keyframe goes out now, not at the next frame time
   }
   if (intake_.TakeParamsChanged() || std::exchange(integrator_replaced_, false) || refresh) PublishParams();
+  if (intake_.TakeTimelineChanged() || refresh) PublishTimeline();
   if (now >= next_second_) {
     PublishParams();
+    PublishTimeline();
     PublishStatus(now);
     next_second_ = std::max(next_second_ + 1.0, now);
   }
@@ -139,6 +141,11 @@ void Server::FrameDue() {
 
 void Server::PublishParams() {
   bus_.Publish(channels_.params, MakeParamsMessage(session_.scene(), UnixMicros()));
+}
+
+void Server::PublishTimeline() {
+  bus_.Publish(channels_.timeline, MakeTimelineMessage(session_.scene().timeline,
+                                                       session_.simulation().state().step, UnixMicros()));
 }
 
 void Server::PublishStatus(double now) {

@@ -4,7 +4,7 @@
 //          step          real time: as many dt steps as wall time allows (an accumulator);
 //                        --fast: steps back to back
 //          publish       STATE every 1/state_rate of simulated time, and at once on REFRESH;
-//                        PARAMS each second and after a change; STATUS each second
+//                        PARAMS and TIMELINE each second and after a change; STATUS each second
 //          frame         every 1/frame_rate of simulated time: draw, pick and compress the
 //                        changed tiles, hand them to the paced publisher's thread; a frame due
 //                        while the last is still being sent is skipped, never queued
@@ -53,6 +53,7 @@ class Server {
   void PublishDue(double now);
   void PublishState();
   void PublishParams();
+  void PublishTimeline();
   void PublishStatus(double now);
   void FrameDue();
 

@@ -1,13 +1,112 @@
 #include "session.hpp"
 
+#include <algorithm>
+#include <utility>
+
 #include "parameter_table.hpp"
+#include "scene_timeline.hpp"
 
 namespace flagsim {
+namespace {
+
+/// The scene as a playing timeline starts it: its controls at its position applied.
+Scene AtTimelineStart(Scene scene) {
+  if (scene.timeline.playing()) ApplyControls(scene.timeline.Evaluate(scene.timeline.position()), &scene);
+  return scene;
+}
+
+/// `key` with what `edit` changes: its controls replace the key's, the key moves to its time.
+sim::Keyframe Changed(sim::Keyframe key, const TimelineEdit& edit) {
+  key.time = edit.key.time;
+  if (!edit.keep_law) key.law = edit.key.law;
+  if (edit.key.wind) key.wind = edit.key.wind;
+  if (edit.key.camera) key.camera = edit.key.camera;
+  for (const sim::ParameterControl& parameter : edit.key.parameters) {
+    const auto same =
+        std::find_if(key.parameters.begin(), key.parameters.end(),
+                     [&parameter](const sim::ParameterControl& each) { return each.name == parameter.name; });
+    if (same == key.parameters.end()) {
+      key.parameters.push_back(parameter);
+    } else {
+      same->value = parameter.value;
+    }
+  }
+  return key;
+}
+
+std::string NoKeyAt(const std::string& field, double time, const sim::Timeline& timeline) {
+  return field + ": no key at " + SecondsText(time) + "; keys at " + KeyTimes(timeline);
+}
+
+/// Applies `edit` to `timeline`; "" or what is wrong with the edit itself (the timeline as a
+/// whole is checked after).
+std::string Edit(const TimelineEdit& edit, sim::Timeline* timeline) {
+  std::string problem;
+  switch (edit.operation) {
+    case TimelineEdit::kAdd:
+      problem = CheckKeyframe(edit.key, "key");
+      if (problem.empty()) timeline->Add(edit.key);
+      return problem;
+    case TimelineEdit::kChange: {
+      const sim::Keyframe* key = timeline->Find(edit.time);
+      if (key == nullptr) return NoKeyAt("time", edit.time, *timeline);
+      const sim::Keyframe changed = Changed(*key, edit);
+      problem = CheckKeyframe(changed, "key");
+      if (problem.empty() && changed.time != edit.time && timeline->Find(changed.time) != nullptr) {
+        problem = "key.time: a key is at " + SecondsText(changed.time) + " already; remove it first";
+      }
+      if (!problem.empty()) return problem;
+      timeline->Remove(edit.time);
+      timeline->Add(changed);
+      return "";
+    }
+    case TimelineEdit::kRemove:
+      return timeline->Remove(edit.time) ? "" : NoKeyAt("time", edit.time, *timeline);
+    case TimelineEdit::kClear:
+      timeline->Clear();
+      return "";
+    case TimelineEdit::kPlay:
+      timeline->Play();
+      return "";
+    case TimelineEdit::kPause:
+      timeline->Pause();
+      return "";
+    case TimelineEdit::kSeek:
+      problem = CheckTimelineTime("time", edit.time);
+      if (problem.empty()) timeline->Seek(edit.time);
+      return problem;
+    case TimelineEdit::kLoop:
+      timeline->SetLoop(edit.loop);
+      return "";
+    case TimelineEdit::kSpeed:
+      problem = CheckTimelineSpeed("speed", edit.speed);
+      if (problem.empty()) timeline->SetSpeed(edit.speed);
+      return problem;
+  }
+  return "operation: unknown";
+}
+
+/// Whether `edit` may make the controls of a playing timeline jump.
+bool MayJump(const TimelineEdit& edit, bool was_playing) {
+  switch (edit.operation) {
+    case TimelineEdit::kAdd:
+    case TimelineEdit::kChange:
+    case TimelineEdit::kRemove:
+    case TimelineEdit::kSeek:
+      return true;
+    case TimelineEdit::kPlay:
+      return !was_playing;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
 
 Session::Session(const Scene& scene)
     : initial_(scene),
-      scene_(scene),
-      simulation_(scene.sim, scene.wind, scene.seed),
+      scene_(AtTimelineStart(scene)),
+      simulation_(scene_.sim, scene_.wind, scene.seed),
       render_scene_(render::DefaultRenderScene(float(scene.sim.pole_height))) {}
 
 std::string Session::ApplyWind(const sim::WindSettings& wind) {
@@ -25,13 +124,17 @@ std::string Session::ApplyParams(const ParamChange& change) {
            " is out of range; allowed 0 .. " + std::to_string(kMaxAssignments);
   }
   // Work on a copy; the session changes only if every assignment and the whole are valid.
-  Scene next = change.reset_to_scene ? initial_ : scene_;
+  Scene next = change.reset_to_scene ? AtTimelineStart(initial_) : scene_;
   std::string problems;
   for (const auto& [name, value] : change.assignments) {
     const std::string problem = ParameterTable::Get().Assign(name, value, &next);
     if (!problem.empty()) problems += (problems.empty() ? "" : "; ") + problem;
   }
   if (problems.empty()) problems = ParameterTable::CheckConsistency(next);
+  if (problems.empty() && !change.reset_to_scene) {  // the keys must suit the new settings too
+    const std::string problem = CheckTimeline(next.timeline, next);
+    if (!problem.empty()) problems = "timeline: " + problem;
+  }
   if (!problems.empty()) return problems;
 
   if (next.sim.pole_height != scene_.sim.pole_height) {
@@ -39,6 +142,7 @@ std::string Session::ApplyParams(const ParamChange& change) {
   }
   scene_ = next;
   simulation_.SetParams(scene_.sim);
+  substeps_segment_ = kNoSegment;  // SetParams chose substeps for the settings as they are
   if (change.reset_to_scene) {
     sim::WindSettings wind = scene_.wind;
     wind.ramp_time = 0;  // back to the scene's wind at once
@@ -50,10 +154,57 @@ std::string Session::ApplyParams(const ParamChange& change) {
 }
 
 bool Session::Step() {
+  if (scene_.timeline.playing()) FollowTimeline();
   simulation_.Step();
   if (simulation_.params().integrator == scene_.sim.integrator) return false;
   scene_.sim.integrator = simulation_.params().integrator;
+  substeps_segment_ = kNoSegment;  // the guard's integrator chose its own
   return true;
+}
+
+// position => controls => scene (within limits) => simulation (light path); position += speed dt
+void Session::FollowTimeline() {
+  sim::Timeline& timeline = scene_.timeline;
+  const double position = timeline.position();
+  if (timeline.SegmentAt(position) != substeps_segment_) FixSubsteps(position);
+  const render::Camera camera = scene_.camera;
+  ApplyControls(timeline.Evaluate(position), &scene_);
+  simulation_.SetControls(scene_.sim, scene_.wind);
+  if (scene_.camera.eye != camera.eye || scene_.camera.target != camera.target ||
+      scene_.camera.fov_y != camera.fov_y) {
+    ++revision_;
+  }
+  timeline.Advance(scene_.sim.dt);
+}
+
+// The segment's least and most settings => substeps stable for all between, fixed till it ends.
+void Session::FixSubsteps(double position) {
+  substeps_segment_ = scene_.timeline.SegmentAt(position);
+  if (!MovesStability(scene_.timeline)) {
+    if (std::exchange(substeps_fixed_, false)) simulation_.SetSubsteps(sim::SubstepsFor(scene_.sim));
+    return;
+  }
+  const SettingRange range = SettingsAround(scene_, scene_.timeline, position);
+  simulation_.SetSubsteps(sim::SubstepsForRange(range.least, range.most));
+  substeps_fixed_ = true;
+}
+
+sim::WindControl Session::WindNow() const {
+  const double time = simulation_.state().time;
+  return {simulation_.wind().Mean(time), simulation_.wind().Gust(time)};
+}
+
+std::string Session::ApplyTimeline(const TimelineEdit& edit) {
+  sim::Timeline next = scene_.timeline;
+  std::string problem = Edit(edit, &next);
+  if (problem.empty()) problem = CheckTimeline(next, scene_);
+  if (!problem.empty()) return problem;
+  if (next.playing() && MayJump(edit, scene_.timeline.playing())) {
+    next.StartGlide(ControlsInForce(scene_, next, WindNow()));
+  }
+  scene_.timeline = std::move(next);
+  substeps_segment_ = kNoSegment;
+  return "";
 }
 
 std::string Session::ApplyCamera(const render::CameraMove& move) {

@@ -1,7 +1,17 @@
-// The running session: the scene as it stands now (parameters, wind, camera), the scene it
-// started from, the simulation, and the renderer that draws it. Commands arrive here already
-// decoded; each is validated whole before it touches anything, so a rejected command leaves
-// the session exactly as it was. No LCM here: the transport side is command_intake.hpp.
+// The running session: the scene as it stands now (parameters, wind, camera, timeline), the
+// scene it started from, the simulation, and the renderer that draws it. Commands arrive here
+// already decoded; each is validated whole before it touches anything, so a rejected command
+// leaves the session exactly as it was. No LCM here: the transport side is command_intake.hpp.
+//
+// A playing timeline drives the controls its keys set. At each step boundary:
+//   evaluate   the timeline at its position (sim/timeline.hpp): wind, parameters, camera
+//   apply      into the scene, within limits (scene_timeline.hpp), and into the simulation by
+//              its light path: spring constants in place, the wind from now, no checkpoint
+//   substeps   on entering a segment between keys (or after an edit), fixed for the least and
+//              most of each control the segment reaches, so they stay stable and constant along it
+//   step       the simulation, then the position moves on by speed * dt
+// Everything is a function of the commands and the step at which each came: a session replays
+// bit for bit, at any thread count.
 #pragma once
 
 #include <string>
@@ -23,6 +33,19 @@ struct ParamChange {
   std::vector<std::pair<std::string, std::string>> assignments;
 };
 
+/// One KEYFRAME command: an operation on the timeline.
+struct TimelineEdit {
+  enum Operation { kAdd, kChange, kRemove, kClear, kPlay, kPause, kSeek, kLoop, kSpeed };
+  Operation operation = kAdd;
+  double time = 0;        ///< s of timeline time: the key to change or remove; the seek target
+  double speed = 1;       ///< kSpeed: timeline s per simulated s
+  bool loop = false;      ///< kLoop: wrap at the last key
+  bool keep_law = false;  ///< kChange: the key keeps its law (key.law is not used)
+  /// kAdd: the key, replacing one at its time. kChange: the controls it sets replace the key's
+  /// (the others stay), and the key moves to key.time.
+  sim::Keyframe key;
+};
+
 class Session {
  public:
   explicit Session(const Scene& scene);
@@ -35,15 +58,22 @@ class Session {
   /// Applies a camera move (kReset: back to the scene's camera); "" or why it was rejected.
   std::string ApplyCamera(const render::CameraMove& move);
 
-  /// One step of the flag. If the guard replaced the integrator, the scene follows (PARAMS shows
-  /// it, and the next PARAM builds on it); returns true then.
+  /// Edits or drives the timeline; "" or why it was rejected (then nothing changed). Where the
+  /// change would make the controls jump during play (play, seek, a key added, changed or
+  /// removed) they glide from the values in force instead.
+  std::string ApplyTimeline(const TimelineEdit& edit);
+
+  /// One step of the flag, under the timeline's controls if it plays. If the guard replaced the
+  /// integrator, the scene follows (PARAMS shows it, and the next PARAM builds on it); returns
+  /// true then.
   bool Step();
 
   /// Draws the flag as it is now with the session's camera and shading, on `threads` threads.
   const render::Framebuffer& RenderFrame(int threads);
   const render::Framebuffer& frame() const { return framebuffer_; }
 
-  /// Counts accepted changes to what a frame shows (wind, parameters, camera).
+  /// Counts accepted changes to what a frame shows (wind, parameters, camera, the camera moved
+  /// by the timeline).
   int64_t revision() const { return revision_; }
 
   const Scene& scene() const { return scene_; }
@@ -53,6 +83,11 @@ class Session {
   static constexpr size_t kMaxAssignments = 64;
 
  private:
+  static constexpr int kNoSegment = -1;
+  void FollowTimeline();
+  void FixSubsteps(double position);
+  sim::WindControl WindNow() const;
+
   Scene initial_;
   Scene scene_;
   FlagSimulation simulation_;
@@ -60,6 +95,8 @@ class Session {
   render::Renderer renderer_;
   render::Framebuffer framebuffer_;
   int64_t revision_ = 0;
+  int substeps_segment_ = kNoSegment;  ///< the timeline segment the substeps were fixed for
+  bool substeps_fixed_ = false;        ///< by the timeline, not by the simulation's own choice
 };
 
 }  // namespace flagsim

@@ -148,6 +148,15 @@ ClothModel<Real> BuildClothModel(const SimParams& params) {
 }
 
 template <typename Real>
+double StiffnessDampingRatio(const ClothModel<Real>& model) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const SpringFamily<Real>& family : model.families) {
+    if (family.stiffness > 0) smallest = std::min(smallest, double(family.damping) / family.stiffness);
+  }
+  return std::isfinite(smallest) ? smallest : 0.0;
+}
+
+template <typename Real>
 FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double friction) {
   // Row sums of K and C per node: each spring adds its constant to both of its nodes.
   std::vector<double> stiffness_sum(model.num_nodes(), 0.0), damping_sum(model.num_nodes(), 0.0);
@@ -164,13 +173,7 @@ FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double fric
   }
   FrequencyBound bound;
   bound.friction = friction;
-  bound.stiffness_damping_ratio = model.families.empty() ? 0.0 : std::numeric_limits<double>::infinity();
-  for (const SpringFamily<Real>& family : model.families) {
-    const double ratio = family.stiffness > 0 ? double(family.damping) / family.stiffness
-                                              : std::numeric_limits<double>::infinity();
-    bound.stiffness_damping_ratio = std::min(bound.stiffness_damping_ratio, ratio);
-  }
-  if (!std::isfinite(bound.stiffness_damping_ratio)) bound.stiffness_damping_ratio = 0;
+  bound.stiffness_damping_ratio = StiffnessDampingRatio(model);
   for (int i = 0; i < model.num_nodes(); ++i) {
     if (model.pinned(i)) continue;
     const double inverse_mass = model.inverse_mass[i];
@@ -192,5 +195,7 @@ template void SetSpringConstants<float>(const SimParams&, ClothModel<float>*);
 template void SetSpringConstants<double>(const SimParams&, ClothModel<double>*);
 template FrequencyBound EstimateFrequencyBound<float>(const ClothModel<float>&, double);
 template FrequencyBound EstimateFrequencyBound<double>(const ClothModel<double>&, double);
+template double StiffnessDampingRatio<float>(const ClothModel<float>&);
+template double StiffnessDampingRatio<double>(const ClothModel<double>&);
 
 }  // namespace flagsim::sim

@@ -82,4 +82,9 @@ struct FrequencyBound {
 template <typename Real>
 FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double friction);
 
+/// s: the smallest damping-to-stiffness ratio c / k over the spring families with stiffness
+/// (FrequencyBound::stiffness_damping_ratio); 0 if no family has any.
+template <typename Real>
+double StiffnessDampingRatio(const ClothModel<Real>& model);
+
 }  // namespace flagsim::sim

@@ -24,6 +24,13 @@ double CatmullRomRate(double ta, double va, double tb, double vb) {
   return tb > ta ? (vb - va) / (tb - ta) : 0.0;
 }
 
+/// The cubic's end rates times the segment's span: Catmull-Rom from the neighbouring keys.
+void CubicRates(const Segment& g, double* m0, double* m1) {
+  const double span = g.t1 - g.t0;
+  *m0 = span * CatmullRomRate(g.t_before, g.v_before, g.t1, g.v1);
+  *m1 = span * CatmullRomRate(g.t0, g.v0, g.t_after, g.v_after);
+}
+
 }  // namespace
 
 const std::vector<std::string>& ControlLawNames() {
@@ -43,14 +50,26 @@ double Interpolate(ControlLaw law, const Segment& g, double t) {
       return g.v0 + (g.v1 - g.v0) * s * s * (3 - 2 * s);
     case ControlLaw::kCubic: {
       // Hermite basis on [0, 1] with the rates scaled to the segment's length.
-      const double m0 = span * CatmullRomRate(g.t_before, g.v_before, g.t1, g.v1);
-      const double m1 = span * CatmullRomRate(g.t0, g.v0, g.t_after, g.v_after);
+      double m0 = 0, m1 = 0;
+      CubicRates(g, &m0, &m1);
       const double s2 = s * s, s3 = s2 * s;
       return (2 * s3 - 3 * s2 + 1) * g.v0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * g.v1 +
              (s3 - s2) * m1;
     }
   }
   return g.v1;
+}
+
+ValueRange RangeOver(ControlLaw law, const Segment& g) {
+  ValueRange range{std::min(g.v0, g.v1), std::max(g.v0, g.v1)};
+  if (law != ControlLaw::kCubic) return range;  // monotone between the keys
+  double m0 = 0, m1 = 0;
+  CubicRates(g, &m0, &m1);
+  for (const double control : {g.v0 + m0 / 3, g.v1 - m1 / 3}) {
+    range.low = std::min(range.low, control);
+    range.high = std::max(range.high, control);
+  }
+  return range;
 }
 
 Vec Slerp(const Vec& from, const Vec& to, double s) {

@@ -35,6 +35,14 @@ struct Segment {
 /// The law's value at time t in [t0, t1].
 double Interpolate(ControlLaw law, const Segment& segment, double t);
 
+/// Bounds on the values the law takes over the whole segment: the keys' values, and for the
+/// cubic its overshoot. The cubic Hermite segment is the Bezier curve with control values
+/// v0, v0 + m0/3, v1 - m1/3, v1 (m the rates times the span), and lies within their range.
+struct ValueRange {
+  double low = 0, high = 0;
+};
+ValueRange RangeOver(ControlLaw law, const Segment& segment);
+
 /// The direction a fraction s in [0, 1] of the way from unit vector `from` to unit vector `to`
 /// along the great circle between them (spherical linear interpolation). Opposite directions
 /// turn through the horizontal plane (about the vertical axis, or about x if they are vertical).

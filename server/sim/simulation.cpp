@@ -49,13 +49,22 @@ std::string GuardEvent::Describe() const {
   return "step " + std::to_string(step) + ": " + problem + "; " + action;
 }
 
-int SubstepsFor(const SimParams& params) {
-  if (params.substeps > 0) return params.substeps;
-  const ClothModel<double> model = BuildClothModel<double>(params);
-  const FrequencyBound bound = EstimateFrequencyBound(model, AirFriction(params));
+int SubstepsFor(const SimParams& params) { return SubstepsForRange(params, params); }
+
+int SubstepsForRange(const SimParams& least, const SimParams& most) {
+  if (most.substeps > 0) return most.substeps;
+  // w^2 and the damping rate at the most of everything; the ratio at the least damping per
+  // stiffness (the model's damping lowered to the least); friction at the least.
+  ClothModel<double> model = BuildClothModel<double>(most);
+  FrequencyBound bound = EstimateFrequencyBound(model, AirFriction(most));
+  SimParams least_damped = most;
+  least_damped.damping = least.damping;
+  SetSpringConstants(least_damped, &model);
+  bound.stiffness_damping_ratio = StiffnessDampingRatio(model);
+  bound.friction = AirFriction(least);
   const double stable =
-      Simulation<double>::kSafety * MakeIntegrator<double>(params.integrator)->StableStep(bound);
-  const double needed = std::ceil(params.dt / stable);
+      Simulation<double>::kSafety * MakeIntegrator<double>(most.integrator)->StableStep(bound);
+  const double needed = std::ceil(most.dt / stable);
   return static_cast<int>(std::clamp(needed, 1.0, double(kMaxSubsteps)));
 }
 
@@ -81,7 +90,8 @@ Simulation<Real>::Simulation(const SimulationSnapshot<Real>& snapshot)
   if (state_.num_nodes() != model_.num_nodes())
     throw std::invalid_argument("snapshot: the state has " + std::to_string(state_.num_nodes()) +
                                 " nodes, its parameters make " + std::to_string(model_.num_nodes()));
-  ChooseIntegrator();
+  integrator_ = MakeIntegrator<Real>(params_.integrator);
+  SetSubsteps(snapshot.substeps);
   Checkpoint();
 }
 
@@ -90,7 +100,7 @@ SimulationSnapshot<Real> Simulation<Real>::CleanSnapshot() {
   integrator_->Reset();
   Checkpoint();
   calm_steps_ = 0;
-  return {params_, wind_.State(), state_, guard_factor_, good_steps_, recoveries_, sleeping_};
+  return {params_, wind_.State(), state_, substeps_, guard_factor_, good_steps_, recoveries_, sleeping_};
 }
 
 template <typename Real>
@@ -120,6 +130,34 @@ void Simulation<Real>::SetWind(const WindSettings& wind) {
   Wake();
   integrator_->Reset();
   Checkpoint();  // a rollback must not replay earlier steps under the new wind
+}
+
+template <typename Real>
+void Simulation<Real>::SetControls(const SimParams& controls, const WindSettings& wind) {
+  const bool springs =
+      controls.stiffness != params_.stiffness || controls.shear_stiffness != params_.shear_stiffness ||
+      controls.bend_stiffness != params_.bend_stiffness || controls.damping != params_.damping;
+  const bool forces = springs || controls.friction != params_.friction ||
+                      controls.wind_coefficient != params_.wind_coefficient ||
+                      controls.gravity != params_.gravity;
+  const WindSettings& now = wind_.target();
+  const bool blows =
+      wind.velocity != now.velocity || wind.gust != now.gust || wind.ramp_time != now.ramp_time;
+  params_.stiffness = controls.stiffness;
+  params_.shear_stiffness = controls.shear_stiffness;
+  params_.bend_stiffness = controls.bend_stiffness;
+  params_.damping = controls.damping;
+  params_.friction = controls.friction;
+  params_.wind_coefficient = controls.wind_coefficient;
+  params_.gravity = controls.gravity;
+  if (springs) SetSpringConstants(params_, &model_);
+  if (blows) wind_.Set(wind, state_.time);
+  if (forces || blows) Wake();
+}
+
+template <typename Real>
+void Simulation<Real>::SetSubsteps(int substeps) {
+  substeps_ = std::clamp(substeps, 1, kMaxSubsteps);
 }
 
 template <typename Real>

@@ -44,6 +44,7 @@ struct SimulationSnapshot {
   SimParams params;  ///< as in use, an integrator the guard chose included
   WindFieldState wind;
   ClothState<Real> state;
+  int substeps = 1;        ///< per step before the guard's factor (SetSubsteps may have fixed them)
   int guard_factor = 1;    ///< the guard's multiple of the substeps
   int64_t good_steps = 0;  ///< steps since the guard last acted
   int64_t recoveries = 0;
@@ -53,6 +54,14 @@ struct SimulationSnapshot {
 /// Substeps per step that `params` asks for: its `substeps` or, when that is 0, enough to stay
 /// within the integrator's stability limit on the grid's frequency bound (with kSafety).
 int SubstepsFor(const SimParams& params);
+
+/// Substeps per step that keep every control setting between `least` and `most` stable (two
+/// settings of one flag that differ only in SetControls' fields): each integrator's stable
+/// step falls as the top frequency and damping rate grow, and rises with the damping ratio and
+/// friction that bound every mode's damping from below; so it is taken at the frequency and
+/// damping rate of the most stiffness, damping and friction, and at the ratio of the least
+/// damping to the most stiffness and at the least friction. SubstepsFor(p) = SubstepsForRange(p, p).
+int SubstepsForRange(const SimParams& least, const SimParams& most);
 
 template <typename Real>
 class Simulation {
@@ -88,6 +97,19 @@ class Simulation {
   /// rebuilds the flag at rest; other changes keep its motion.
   void SetParams(const SimParams& params);
   void SetWind(const WindSettings& wind);
+
+  /// The light path for controls that move at every step (the keyframe timeline), between
+  /// steps: the forces' coefficients of `controls` (stiffness, shear_stiffness, bend_stiffness,
+  /// damping, friction, wind_coefficient, gravity; its other fields are ignored) and `wind`.
+  /// Spring constants are updated in place and the wind set from now; no checkpoint is taken,
+  /// no frequency estimated, and the integrator keeps what it carries between substeps (forces
+  /// from the last, a factorisation), a lag of one step in coefficients that move continuously.
+  /// A change wakes the flag. The substeps stay as they are: SetSubsteps chooses them for the
+  /// range of settings the controls will pass through.
+  void SetControls(const SimParams& controls, const WindSettings& wind);
+  /// Fixes the substeps per step (before the guard's factor) until the next SetParams.
+  void SetSubsteps(int substeps);
+
   /// The flag back at rest, flat, in its initial pose; time and step go on.
   void RestartFlag();
 

@@ -5,6 +5,8 @@
 namespace flagsim::sim {
 namespace {
 
+double Speed(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
 /// splitmix64's finaliser: a well-mixed 64-bit hash of one integer.
 uint64_t Mix(uint64_t value) {
   value += 0x9e3779b97f4a7c15ull;
@@ -33,9 +35,14 @@ WindField::WindField(const WindSettings& settings, uint64_t seed)
     : from_(settings), to_(settings), seed_(seed) {}
 
 WindField::WindField(const WindFieldState& state)
-    : from_(state.from), to_(state.to), ramp_start_(state.ramp_start), seed_(state.seed) {}
+    : from_(state.from),
+      to_(state.to),
+      ramp_start_(state.ramp_start),
+      carried_(state.carried),
+      seed_(state.seed) {}
 
 void WindField::Set(const WindSettings& settings, double now) {
+  carried_ = Carried(now);
   from_.velocity = Mean(now);
   from_.gust = Gust(now);
   to_ = settings;
@@ -60,12 +67,29 @@ double WindField::Gust(double t) const {
   return from_.gust + a * (to_.gust - from_.gust);
 }
 
+// carried(t0) + integral from t0 to t of |from| + a(tau) (|to| - |from|), a the ramp fraction
+// (tau - t0) / T, clamped to [0, 1]: its integral is (t - t0)^2 / 2T while ramping, then
+// T / 2 + (t - t0 - T).
+double WindField::Carried(double t) const {
+  const double elapsed = t - ramp_start_, ramp = to_.ramp_time;
+  const double from = Speed(from_.velocity), to = Speed(to_.velocity);
+  double ramped = elapsed;  // the integral of a
+  if (elapsed <= 0) {
+    ramped = 0;
+  } else if (elapsed < ramp) {
+    ramped = elapsed * elapsed / (2 * ramp);
+  } else if (ramp > 0) {
+    ramped = elapsed - ramp / 2;
+  }
+  return carried_ + from * elapsed + (to - from) * ramped;
+}
+
 Vec3 WindField::At(double t, double s) const {
   Vec3 wind = Mean(t);
-  const double speed = std::sqrt(wind[0] * wind[0] + wind[1] * wind[1] + wind[2] * wind[2]);
+  const double speed = Speed(wind);
   const double amplitude = Gust(t) * speed;
   if (amplitude == 0) return wind;
-  const double u = (speed * t - s) / kGustLength;
+  const double u = (Carried(t) - s) / kGustLength;
   for (int k = 0; k < 3; ++k) wind[k] += amplitude * ValueNoise(seed_ + 0x51ed27 * (k + 1), u);
   return wind;
 }

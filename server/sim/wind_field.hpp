@@ -15,11 +15,13 @@ struct WindSettings {
   double ramp_time = 0.0;        ///< s, simulated time to reach this setting from the last one
 };
 
-/// Everything a WindField is, for checkpoints: the ramp it is on and its gusts' seed.
+/// Everything a WindField is, for checkpoints: the ramp it is on, how far the wind had carried
+/// the gusts when the ramp began, and their seed.
 struct WindFieldState {
   WindSettings from;      ///< the wind the ramp started from
   WindSettings to;        ///< the wind it goes to
   double ramp_start = 0;  ///< s, simulated time the ramp began
+  double carried = 0;     ///< m, WindField::Carried(ramp_start)
   uint64_t seed = 1;      ///< gust noise
 };
 
@@ -36,13 +38,18 @@ class WindField {
   /// The gust strength at time t (ramped like the mean).
   double Gust(double t) const;
   /// The wind at time t at distance `s` metres down the flag from the pole (its material
-  /// coordinate): Mean(t) + Gust(t) |Mean(t)| N((|Mean| t - s) / kGustLength), where N is
+  /// coordinate): Mean(t) + Gust(t) |Mean(t)| N((Carried(t) - s) / kGustLength), where N is
   /// smooth noise in [-1, 1] per component. Frozen turbulence carried by the mean wind.
   Vec3 At(double t, double s) const;
+  /// m: how far the mean wind has carried the turbulence by time t, the integral of its speed
+  /// (|w| t for a wind that never changed). A new setting goes on from where the last one had
+  /// carried it, so the gusts never jump when the wind changes, however often it does. Over a
+  /// ramp the speed is taken to ramp linearly from the old to the new.
+  double Carried(double t) const;
 
   const WindSettings& target() const { return to_; }
   uint64_t seed() const { return seed_; }
-  WindFieldState State() const { return {from_, to_, ramp_start_, seed_}; }
+  WindFieldState State() const { return {from_, to_, ramp_start_, carried_, seed_}; }
 
   static constexpr double kGustLength = 1.5;  ///< m, correlation length of gusts
 
@@ -51,7 +58,8 @@ class WindField {
 
   WindSettings from_;
   WindSettings to_;
-  double ramp_start_ = 0;
+  double ramp_start_ = 0;  ///< s
+  double carried_ = 0;     ///< m: Carried(ramp_start_)
   uint64_t seed_;
 };
 

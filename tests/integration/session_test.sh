@@ -6,6 +6,7 @@ build=$1
 flagd=$build/server/flagd
 flagctl=$build/client/flagctl
 spray=$build/tests/lcm_spray
+scenes=$(cd "$(dirname "$0")/../../scenes" && pwd)
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
 prefix=ITEST_
 work=$(mktemp -d)
@@ -56,6 +57,12 @@ expect 0 "flagd --help" "$flagd" --help
 expect 0 "flagctl --help" "$flagctl" --help
 expect 2 "flagctl without a subcommand" "$flagctl"
 expect 2 "flagctl wind with two numbers" "$flagctl" wind 1 2
+printf '[[timeline.keys]]\ntime = 0\nparameters = { cols = 40 }\n' >"$work/bad.toml"
+expect 2 "flagd rejects a key that sets the grid" "$flagd" --scene "$work/bad.toml"
+contains "timeline.keys[0].parameters.cols: cannot be animated" "  and names the key and field"
+expect 0 "flagd plays the swing example's timeline" "$flagd" --prefix SWING_ --scene "$scenes/swing.toml" --fast \
+  --duration 1 --log-level info
+contains "scene 'swing'" "  from the scene file"
 
 echo "-- a live server"
 "$flagd" --prefix $prefix --log-level warn >"$work/flagd.log" 2>&1 &
@@ -101,12 +108,38 @@ expect 0 "frames can be turned off" "$flagctl" --prefix $prefix set frame_rate=0
 expect 0 "and a snapshot still gets one" "$flagctl" --prefix $prefix --timeout 5 snapshot -o "$work/asked.png"
 expect 0 "frames back on" "$flagctl" --prefix $prefix set frame_rate=30
 
+echo "-- keyframes"
+expect 0 "keyframe add accepted" "$flagctl" --prefix $prefix keyframe add 0 --set stiffness=1500 --wind 6 0 1 \
+  --law smooth
+expect 0 "a second key with wind and camera" "$flagctl" --prefix $prefix keyframe add 2 --set stiffness=3000 \
+  --wind 0 0 -6 --gust 0.2 --eye 2.6 1.9 4.4 --target 0.8 2.2 0 --fov 45
+expect 3 "a key with NaN rejected" "$flagctl" --prefix $prefix keyframe add 1 --set stiffness=nan
+contains "key.parameters.stiffness: nan is not a finite number" "  with the field named"
+expect 3 "a key that sets the grid rejected" "$flagctl" --prefix $prefix keyframe add 1 --set cols=40
+contains "cannot be animated" "  and why"
+expect 3 "removing a key that is not there rejected" "$flagctl" --prefix $prefix keyframe remove 7
+contains "no key at 7 s; keys at 0, 2 s" "  with the keys there are"
+expect 2 "--gust without --wind is a usage error" "$flagctl" --prefix $prefix keyframe add 1 --gust 0.3
+expect 2 "--set without a number is a usage error" "$flagctl" --prefix $prefix keyframe add 1 --set stiffness=x
+expect 0 "keyframe loop on" "$flagctl" --prefix $prefix keyframe loop on
+expect 0 "keyframe play" "$flagctl" --prefix $prefix keyframe play
+expect 0 "keyframe list" "$flagctl" --prefix $prefix keyframe list
+matches "^playing at [0-9.]+ s of 2 s, speed 1, loop on" "  playing and looping"
+matches "^2 +linear +0 0 -6 +0.2 +eye 2.6 1.9 4.4, target 0.8 2.2 0, fov 45 +stiffness=3000" "  with what each key sets"
+expect 0 "params follow the timeline" "$flagctl" --prefix $prefix params
+matches "^stiffness +((1[5-9]|2[0-9])[0-9]{2}(\.[0-9]+)?|3000) " "  between its keys' stiffness"
+expect 0 "keyframe pause" "$flagctl" --prefix $prefix keyframe pause
+expect 0 "keyframe clear" "$flagctl" --prefix $prefix keyframe clear
+expect 0 "an empty timeline is listed" "$flagctl" --prefix $prefix keyframe list
+contains "paused at 0 s of 0 s" "  at 0, paused"
+expect 4 "no TIMELINE on another prefix" "$flagctl" --prefix NOBODY_ --timeout 1 keyframe list
+
 echo "-- hostile bytes"
 expect 0 "spray garbage on every command channel" "$spray" "$LCM_DEFAULT_URL" 40 \
   ${prefix}WIND ${prefix}PARAM ${prefix}REFRESH ${prefix}CAMERA ${prefix}KEYFRAME
 sleep 1.5  # a STATUS goes out each second
 expect 0 "the server still answers" "$flagctl" --prefix $prefix status
-contains "160 undecodable dropped" "  and counted what it dropped (KEYFRAME has no listener yet)"
+contains "200 undecodable dropped" "  and counted what it dropped on each channel"
 expect 0 "and still takes commands" "$flagctl" --prefix $prefix wind 5 0 1
 
 echo "-- recording"

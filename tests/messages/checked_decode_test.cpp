@@ -28,6 +28,21 @@ TEST(CheckedDecode, RoundTripsEveryCommand) {
   EXPECT_EQ(wind->velocity[0], 4);
   EXPECT_EQ(wind->ramp_time, 1.5);
 
+  const auto key_bytes = Encode(testing::SomeKeyframeCommand());
+  const auto keyframe = CheckedDecode<keyframe_command_t>(key_bytes.data(), key_bytes.size(), kLimit, &error);
+  ASSERT_TRUE(keyframe) << error;
+  EXPECT_EQ(keyframe->key.names, testing::SomeKey().names);
+  EXPECT_EQ(keyframe->key.values, testing::SomeKey().values);
+  EXPECT_EQ(keyframe->key.camera_fov, 40);
+
+  const auto timeline_bytes = Encode(testing::SomeTimeline());
+  const auto timeline =
+      CheckedDecode<timeline_t>(timeline_bytes.data(), timeline_bytes.size(), kLimit, &error);
+  ASSERT_TRUE(timeline) << error;
+  ASSERT_EQ(timeline->keys.size(), 2u);
+  EXPECT_EQ(timeline->keys[1].time, 4);
+  EXPECT_TRUE(timeline->keys[0].has_camera);
+
   const auto state_bytes = Encode(testing::SomeState());
   const auto state = CheckedDecode<state_t>(state_bytes.data(), state_bytes.size(), kLimit, &error);
   ASSERT_TRUE(state) << error;

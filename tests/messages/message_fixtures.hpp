@@ -14,6 +14,7 @@
 #include "flagsim/state_t.hpp"
 #include "flagsim/status_t.hpp"
 #include "flagsim/tile_t.hpp"
+#include "flagsim/timeline_t.hpp"
 #include "flagsim/wind_command_t.hpp"
 
 namespace flagsim::testing {
@@ -71,14 +72,45 @@ inline params_t SomeParams() {
   return params;
 }
 
+inline timeline_key_t SomeKey() {
+  timeline_key_t key{};
+  key.time = 2;
+  key.law = timeline_key_t::LAW_SMOOTH;
+  key.has_wind = true;
+  key.wind_velocity[0] = 6;
+  key.wind_gust = 0.2;
+  key.names = {"stiffness", "damping"};
+  key.values = {1500, 0.1};
+  key.num_parameters = 2;
+  key.has_camera = true;
+  key.camera_eye[2] = 4;
+  key.camera_target[1] = 2;
+  key.camera_fov = 40;
+  return key;
+}
+
 inline keyframe_command_t SomeKeyframeCommand() {
   keyframe_command_t command{};
   command.client_id = "k";
+  command.sequence = 4;
   command.operation = keyframe_command_t::ADD;
-  command.names = {"stiffness"};
-  command.values = {"100"};
-  command.num_assignments = 1;
+  command.key = SomeKey();
   return command;
+}
+
+inline timeline_t SomeTimeline() {
+  timeline_t timeline{};
+  timeline.playing = true;
+  timeline.position = 1.5;
+  timeline.speed = 1;
+  timeline.keys = {SomeKey(), SomeKey()};
+  timeline.keys[1].time = 4;
+  timeline.keys[1].num_parameters = 0;
+  timeline.keys[1].names.clear();
+  timeline.keys[1].values.clear();
+  timeline.num_keys = 2;
+  timeline.end = 4;
+  return timeline;
 }
 
 inline tile_t SomeTile() {

@@ -11,9 +11,9 @@ using testing::Encode;
 
 TEST(WireSchema, KnowsEveryTypeAndItsFields) {
   const Schema& schema = Schema::Flagsim();
-  for (const char* type :
-       {"ack_t", "camera_command_t", "frame_t", "keyframe_command_t", "param_command_t", "parameter_t",
-        "params_t", "refresh_request_t", "state_t", "status_t", "tile_t", "wind_command_t"}) {
+  for (const char* type : {"ack_t", "camera_command_t", "frame_t", "keyframe_command_t", "param_command_t",
+                           "parameter_t", "params_t", "refresh_request_t", "state_t", "status_t", "tile_t",
+                           "timeline_key_t", "timeline_t", "wind_command_t"}) {
     EXPECT_NE(schema.Find(type), nullptr) << type;
   }
   const StructLayout* state = schema.Find("state_t");
@@ -55,6 +55,7 @@ TEST(WireSchema, AcceptsWhatLcmGenEncodes) {
   accepts("state_t", Encode(testing::SomeState()));
   accepts("params_t", Encode(testing::SomeParams()));
   accepts("keyframe_command_t", Encode(testing::SomeKeyframeCommand()));
+  accepts("timeline_t", Encode(testing::SomeTimeline()));
   accepts("tile_t", Encode(testing::SomeTile()));
   accepts("frame_t", Encode(testing::SomeFrame()));
   accepts("ack_t", Encode(ack_t{}));
@@ -64,9 +65,14 @@ TEST(WireSchema, AcceptsWhatLcmGenEncodes) {
 }
 
 TEST(WireSchema, RejectsEveryTruncation) {
-  const std::vector<uint8_t> bytes = Encode(testing::SomeParams());
-  for (size_t size = 0; size < bytes.size(); ++size) {
-    EXPECT_NE(Schema::Flagsim().CheckWire("params_t", bytes.data(), size), "") << size;
+  const std::vector<std::pair<const char*, std::vector<uint8_t>>> messages = {
+      {"params_t", Encode(testing::SomeParams())},
+      {"keyframe_command_t", Encode(testing::SomeKeyframeCommand())},  // with a nested key
+      {"timeline_t", Encode(testing::SomeTimeline())}};
+  for (const auto& [type, bytes] : messages) {
+    for (size_t size = 0; size < bytes.size(); ++size) {
+      EXPECT_NE(Schema::Flagsim().CheckWire(type, bytes.data(), size), "") << type << " " << size;
+    }
   }
 }
 

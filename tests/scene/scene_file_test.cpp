@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scene_timeline.hpp"
+
 namespace flagsim {
 namespace {
 
@@ -67,6 +69,101 @@ TEST(SceneFile, ErrorsNameTheFileLineAndProblem) {
   EXPECT_EQ(ErrorOf("name = \n").rfind("test.toml:1:", 0), 0u);  // TOML syntax
   EXPECT_NE(ErrorOf("[parameters]\nintegrator = \"seed\"\nfriction = 2\n").find("seed integrator"),
             std::string::npos);
+}
+
+/// The error has `expected` in it.
+void ExpectError(const std::string& error, const std::string& expected) {
+  EXPECT_NE(error.find(expected), std::string::npos) << "'" << error << "' lacks '" << expected << "'";
+}
+
+TEST(SceneFile, ReadsATimeline) {
+  const Scene scene = ParseScene(R"(
+[timeline]
+play = true
+loop = true
+speed = 0.5
+[[timeline.keys]]
+time = 4
+wind = [0.0, 0.0, -8.0]
+camera = { eye = [1, 2, 5], target = [0.8, 2, 0], fov = 45 }
+[[timeline.keys]]
+time = 0
+law = "cubic"
+wind = [6, 0, 0]
+gust = 0.2
+parameters = { stiffness = 1500, gravity = 9 }
+)",
+                                 "test.toml");
+  const sim::Timeline& timeline = scene.timeline;
+  EXPECT_TRUE(timeline.playing());
+  EXPECT_TRUE(timeline.loop());
+  EXPECT_EQ(timeline.speed(), 0.5);
+  ASSERT_EQ(timeline.keys().size(), 2u);
+  const sim::Keyframe& first = timeline.keys()[0];  // in time order, whatever the file's
+  EXPECT_EQ(first.time, 0);
+  EXPECT_EQ(first.law, sim::ControlLaw::kCubic);
+  EXPECT_EQ(first.wind->velocity, (sim::Vec3{6, 0, 0}));
+  EXPECT_EQ(first.wind->gust, 0.2);
+  EXPECT_EQ(*first.Parameter("stiffness"), 1500);
+  EXPECT_EQ(*first.Parameter("gravity"), 9);
+  EXPECT_FALSE(first.camera);
+  const sim::Keyframe& second = timeline.keys()[1];
+  EXPECT_EQ(second.law, sim::ControlLaw::kLinear);  // the default
+  EXPECT_EQ(second.wind->gust, 0);
+  ASSERT_TRUE(second.camera);
+  EXPECT_EQ(second.camera->eye, (sim::Vec3{1, 2, 5}));
+  EXPECT_EQ(second.camera->fov, 45);
+  EXPECT_TRUE(second.parameters.empty());
+}
+
+TEST(SceneFile, TimelineErrorsNameTheKeyFieldAndProblem) {
+  const auto error_of_key = [](const std::string& key) { return ErrorOf("[[timeline.keys]]\n" + key); };
+  ExpectError(error_of_key("wind = [1, 0, 0]\n"), "test.toml:1: timeline.keys[0].time is missing");
+  ExpectError(error_of_key("time = 0\nlaw = \"bezier\"\nwind = [1, 0, 0]\n"),
+              "test.toml:3: timeline.keys[0].law must be one of: step, linear, smooth, cubic");
+  ExpectError(error_of_key("time = 0\nparameters = { cols = 40 }\n"),
+              "timeline.keys[0].parameters.cols: cannot be animated");
+  ExpectError(error_of_key("time = 0\nparameters = { stiffness = nan }\n"),
+              "timeline.keys[0].parameters.stiffness: nan is not a finite number; allowed 1 .. 1e+05 N/m");
+  ExpectError(error_of_key("time = 0\nparameters = { stiffness = true }\n"),
+              "timeline.keys[0].parameters.stiffness must be a number");
+  ExpectError(error_of_key("time = 0\ngust = 0.3\n"), "gust needs wind");
+  ExpectError(error_of_key("time = 0\nwind = [100, 0, 0]\n"), "timeline.keys[0].wind.velocity: speed 100");
+  ExpectError(error_of_key("time = 0\ncamera = { eye = [1, 2, 3], target = [0, 2, 0] }\n"),
+              "timeline.keys[0].camera needs eye, target and fov; fov is missing");
+  ExpectError(error_of_key("time = 0\ncamera = { eye = [1, 2, 3], target = [0, 2, 0], fov = 300 }\n"),
+              "timeline.keys[0].camera.fov: 300 is out of range; allowed 10 .. 120 degrees");
+  ExpectError(error_of_key("time = -2\nwind = [1, 0, 0]\n"), "timeline.keys[0].time: -2 is out of range");
+  ExpectError(error_of_key("time = 1\n"), "timeline.keys[0] sets nothing");
+  ExpectError(error_of_key("time = 1\nspeed = 3\n"), "unknown key timeline.keys[0].speed");
+  ExpectError(
+      ErrorOf("[[timeline.keys]]\ntime = 1\nwind = [1, 0, 0]\n[[timeline.keys]]\ntime = 1\nwind = [2, 0, "
+              "0]\n"),
+      "timeline.keys[1].time: 1 s already has a key");
+  ExpectError(ErrorOf("[timeline]\nspeed = 0\n"), "test.toml: timeline.speed: 0; allowed above 0");
+  ExpectError(ErrorOf("[timeline]\nrate = 2\n"), "unknown key timeline.rate");
+  ExpectError(ErrorOf("[timeline]\nplay = 1\n"), "timeline.play must be true or false");
+  ExpectError(ErrorOf("[timeline]\nkeys = 3\n"), "timeline.keys must be tables");
+  std::string many;
+  for (size_t i = 0; i <= TimelineLimits::kMaxKeys; ++i)
+    many += "[[timeline.keys]]\ntime = " + std::to_string(i) + "\nwind = [1, 0, 0]\n";
+  ExpectError(ErrorOf(many), "timeline.keys: 257 of them; allowed at most 256");
+  ExpectError(ErrorOf("[parameters]\nintegrator = \"seed\"\n[[timeline.keys]]\ntime = 0\nparameters = { "
+                      "friction = 2 }\n"),
+              "timeline.friction: the keys reach 2; the seed integrator");
+}
+
+TEST(SceneFile, TheSwingExampleLoops) {
+  const Scene scene = LoadScene(std::string(FLAGSIM_SOURCE_DIR) + "/scenes/swing.toml");
+  const sim::Timeline& timeline = scene.timeline;
+  EXPECT_TRUE(timeline.playing());
+  EXPECT_TRUE(timeline.loop());
+  ASSERT_EQ(timeline.keys().size(), 5u);
+  EXPECT_EQ(timeline.End(), 8);
+  // The loop joins: its last key sets what its first sets, to the same values.
+  EXPECT_EQ(timeline.keys().back().wind, timeline.keys().front().wind);
+  EXPECT_EQ(timeline.keys().back().parameters, timeline.keys().front().parameters);
+  EXPECT_EQ(timeline.Evaluate(8), timeline.Evaluate(0));
 }
 
 TEST(SceneFile, UnknownPathListsThePresets) {

@@ -69,5 +69,50 @@ TEST(MessageBuilders, StatusRatesAreOverTheWindow) {
   EXPECT_EQ(status.integrator, "symplectic_euler");
 }
 
+TEST(MessageBuilders, TimelineListsEveryKeyAndWhatItSets) {
+  sim::Timeline timeline;
+  sim::Keyframe wind;
+  wind.time = 1;
+  wind.law = sim::ControlLaw::kCubic;
+  wind.wind = sim::WindControl{{3, 0, -4}, 0.25};
+  timeline.Add(wind);
+  sim::Keyframe rest;
+  rest.time = 3.5;
+  rest.parameters = {{"stiffness", 2500}, {"gravity", 9}};
+  rest.camera = sim::CameraControl{{1, 2, 3}, {0, 2, 0}, 55};
+  timeline.Add(rest);
+  timeline.SetLoop(true);
+  timeline.Play();
+  timeline.Seek(1.25);
+  const timeline_t message = MakeTimelineMessage(timeline, 42, 7);
+  EXPECT_EQ(message.step, 42);
+  EXPECT_TRUE(message.playing);
+  EXPECT_TRUE(message.loop);
+  EXPECT_EQ(message.position, 1.25);
+  EXPECT_EQ(message.end, 3.5);
+  ASSERT_EQ(message.num_keys, 2);
+  const timeline_key_t& first = message.keys[0];
+  EXPECT_EQ(first.law, timeline_key_t::LAW_CUBIC);
+  EXPECT_TRUE(first.has_wind);
+  EXPECT_EQ(first.wind_velocity[2], -4);
+  EXPECT_EQ(first.wind_gust, 0.25);
+  EXPECT_FALSE(first.has_camera);
+  EXPECT_EQ(first.num_parameters, 0);
+  const timeline_key_t& second = message.keys[1];
+  EXPECT_EQ(second.law, timeline_key_t::LAW_LINEAR);
+  EXPECT_FALSE(second.has_wind);
+  EXPECT_EQ(second.names, (std::vector<std::string>{"stiffness", "gravity"}));
+  EXPECT_EQ(second.values, (std::vector<double>{2500, 9}));
+  EXPECT_TRUE(second.has_camera);
+  EXPECT_EQ(second.camera_eye[2], 3);
+  EXPECT_EQ(second.camera_fov, 55);
+  // and it survives the wire
+  const auto bytes = testing::Encode(message);
+  std::string error;
+  const auto decoded = wire::CheckedDecode<timeline_t>(bytes.data(), bytes.size(), 1 << 20, &error);
+  ASSERT_TRUE(decoded) << error;
+  EXPECT_EQ(decoded->keys[1].names, second.names);
+}
+
 }  // namespace
 }  // namespace flagsim

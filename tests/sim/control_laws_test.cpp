@@ -14,7 +14,9 @@ TEST(ControlLaws, EveryLawIsExactAtItsKeys) {
   for (const ControlLaw law :
        {ControlLaw::kStep, ControlLaw::kLinear, ControlLaw::kSmooth, ControlLaw::kCubic}) {
     EXPECT_DOUBLE_EQ(Interpolate(law, Keys(), 3.0), 6.0) << ControlLawNames()[int(law)];
-    if (law != ControlLaw::kStep) EXPECT_DOUBLE_EQ(Interpolate(law, Keys(), 1.0), 2.0);
+    if (law != ControlLaw::kStep) {
+      EXPECT_DOUBLE_EQ(Interpolate(law, Keys(), 1.0), 2.0);
+    }
   }
   EXPECT_DOUBLE_EQ(Interpolate(ControlLaw::kStep, Keys(), 1.0), 2.0);
 }
@@ -59,6 +61,30 @@ TEST(ControlLaws, LinearAndCubicAreContinuousInside) {
       EXPECT_LT(std::abs(Interpolate(law, Keys(), t + 1e-7) - Interpolate(law, Keys(), t)), 1e-5);
     }
   }
+}
+
+TEST(ControlLaws, RangesHoldEveryValueOfTheSegment) {
+  // Keys 0 at t = 0, 1 at t = 1 and 2, 0 at t = 3: the cubic on (1, 2) has rates +1/2 and -1/2
+  // at its ends and rises above 1 between them; the other laws stay between the keys.
+  const Segment peak{1, 2, 1, 1, 0, 0, 3, 0};
+  for (const ControlLaw law :
+       {ControlLaw::kStep, ControlLaw::kLinear, ControlLaw::kSmooth, ControlLaw::kCubic}) {
+    const ValueRange range = RangeOver(law, peak);
+    double high = -1;
+    for (double t = 1; t <= 2; t += 1e-3) {
+      const double value = Interpolate(law, peak, t);
+      EXPECT_GE(value, range.low);
+      EXPECT_LE(value, range.high);
+      high = std::max(high, value);
+    }
+    if (law == ControlLaw::kCubic) {
+      EXPECT_GT(high, 1.1);  // the overshoot: (v0 + v1) / 2 + (m0 - m1) / 8 = 1.125 at s = 1/2
+    } else {
+      EXPECT_EQ(range.high, 1.0);
+    }
+  }
+  EXPECT_EQ(RangeOver(ControlLaw::kLinear, Keys()).low, 2.0);
+  EXPECT_EQ(RangeOver(ControlLaw::kLinear, Keys()).high, 6.0);
 }
 
 TEST(ControlLaws, WindTurnsByAngleAndKeepsUnitLength) {

@@ -272,12 +272,141 @@ TEST(Simulation, ASnapshotCarriesSleep) {
   EXPECT_TRUE(resumed.sleeping());
 }
 
+// Substeps fixed for a timeline's segment go with the snapshot, not the parameters' own count.
+TEST(Simulation, ASnapshotKeepsFixedSubsteps) {
+  SimParams params;
+  Simulation<float> original(params, Breeze());
+  original.SetSubsteps(SubstepsFor(params) + 5);
+  Simulation<float> resumed(original.CleanSnapshot());
+  EXPECT_EQ(resumed.substeps(), original.substeps());
+}
+
 TEST(Simulation, ASnapshotWhoseStateDoesNotFitItsGridIsRefused) {
   SimParams params;
   Simulation<float> original(params, Breeze());
   SimulationSnapshot<float> snapshot = original.CleanSnapshot();
   snapshot.params.cols = 40;
   EXPECT_THROW(Simulation<float>{snapshot}, std::invalid_argument);
+}
+
+// The light path (SetControls, then SetSubsteps) leaves the flag in the state SetParams and
+// SetWind leave it in, for an integrator that carries nothing from one substep to the next:
+// the same spring constants, wind and substeps, the same steps bit for bit.
+TEST(Simulation, TheLightPathStepsAsSetParamsDoes) {
+  SimParams params;
+  const WindSettings breeze{{6, 0, 1.5}, 0.2, 0};
+  Simulation<float> light(params, breeze), full(params, breeze);
+  for (int i = 0; i < 100; ++i) {
+    light.Step();
+    full.Step();
+  }
+  SimParams changed = params;
+  changed.stiffness = 3500;
+  changed.bend_stiffness = 35;
+  changed.damping = 0.08;
+  changed.friction = 0.4;
+  changed.gravity = 9;
+  changed.wind_coefficient = 1.3;
+  const WindSettings gale{{14, 0, -3}, 0.35, 0};
+  light.SetControls(changed, gale);
+  light.SetSubsteps(SubstepsFor(changed));
+  full.SetParams(changed);
+  full.SetWind(gale);
+  for (size_t f = 0; f < light.model().families.size(); ++f) {
+    EXPECT_EQ(light.model().families[f].stiffness, full.model().families[f].stiffness);
+    EXPECT_EQ(light.model().families[f].damping, full.model().families[f].damping);
+  }
+  EXPECT_EQ(light.substeps(), full.substeps());
+  for (int i = 0; i < 300; ++i) {
+    light.Step();
+    full.Step();
+  }
+  EXPECT_EQ(light.Hash(), full.Hash());
+  EXPECT_EQ(light.params().gravity, 9);
+}
+
+TEST(Simulation, SetControlsKeepsEverythingElse) {
+  SimParams params;
+  Simulation<float> simulation(params, WindSettings{});
+  SimParams controls;
+  controls.cols = 8;  // not a control: ignored
+  controls.integrator = IntegratorKind::kRk4;
+  controls.stiffness = 1000;
+  simulation.SetControls(controls, WindSettings{});
+  EXPECT_EQ(simulation.model().cols, params.cols);
+  EXPECT_EQ(simulation.params().integrator, params.integrator);
+  EXPECT_EQ(simulation.params().stiffness, 1000);
+}
+
+// Any setting between the least and the most of each control is stable with the substeps for
+// the range: at least as many as any corner of the box needs, for every explicit integrator.
+TEST(Simulation, SubstepsForARangeCoverEverySettingInIt) {
+  for (const IntegratorKind kind : {IntegratorKind::kSymplecticEuler, IntegratorKind::kExplicitEuler,
+                                    IntegratorKind::kVelocityVerlet, IntegratorKind::kRk4}) {
+    SimParams least, most;
+    least.integrator = most.integrator = kind;
+    least.stiffness = 500;
+    most.stiffness = 20000;
+    least.shear_stiffness = 50;
+    most.shear_stiffness = 2000;
+    least.damping = 0.02;
+    most.damping = 0.5;
+    least.friction = 0.1;
+    most.friction = 3;
+    const int range = SubstepsForRange(least, most);
+    for (int corner = 0; corner < 16; ++corner) {
+      SimParams p = least;
+      if (corner & 1) p.stiffness = most.stiffness;
+      if (corner & 2) p.shear_stiffness = most.shear_stiffness;
+      if (corner & 4) p.damping = most.damping;
+      if (corner & 8) p.friction = most.friction;
+      EXPECT_GE(range, SubstepsFor(p)) << IntegratorName(kind) << " corner " << corner;
+    }
+    EXPECT_EQ(SubstepsForRange(most, most), SubstepsFor(most));
+  }
+  // Explicit Euler is stable only by its damping: the least damping with the most stiffness
+  // asks for more than the most of everything does.
+  SimParams least, most;
+  least.integrator = most.integrator = IntegratorKind::kExplicitEuler;
+  most.stiffness = 20000;
+  least.damping = 0.01;
+  most.damping = 0.5;
+  SimParams stiff_undamped = most;
+  stiff_undamped.damping = least.damping;
+  EXPECT_GT(SubstepsFor(stiff_undamped), SubstepsFor(most));
+  EXPECT_EQ(SubstepsForRange(least, most), SubstepsFor(stiff_undamped));
+}
+
+// A flag stiffened from 1000 to 20000 N/m over a second through the light path, on the
+// substeps for that range, never needs the guard.
+TEST(Simulation, AFlagStiffenedThroughTheLightPathStaysSound) {
+  SimParams least, most;
+  least.stiffness = 1000;
+  most.stiffness = 20000;
+  Simulation<float> simulation(least, WindSettings{{12, 0, 3}, 0.3, 0});
+  simulation.SetSubsteps(SubstepsForRange(least, most));
+  EXPECT_GT(simulation.substeps(), SubstepsFor(least));
+  SimParams now = least;
+  for (int i = 0; i <= 500; ++i) {
+    now.stiffness = least.stiffness + (most.stiffness - least.stiffness) * i / 500;
+    simulation.SetControls(now, WindSettings{{12, 0, 3}, 0.3, 0});
+    simulation.Step();
+  }
+  EXPECT_EQ(simulation.recoveries(), 0);
+  EXPECT_EQ(simulation.params().stiffness, 20000);
+}
+
+TEST(Simulation, OnlyAChangeOfControlsWakesTheFlag) {
+  SimParams params;
+  params.friction = 5.0;
+  Simulation<float> simulation(params, testing::NoWind());
+  for (int steps = 0; !simulation.sleeping() && steps < 20000; ++steps) simulation.Step();
+  ASSERT_TRUE(simulation.sleeping());
+  simulation.SetControls(params, testing::NoWind());
+  EXPECT_TRUE(simulation.sleeping());
+  params.stiffness = 1500;
+  simulation.SetControls(params, testing::NoWind());
+  EXPECT_FALSE(simulation.sleeping());
 }
 
 }  // namespace

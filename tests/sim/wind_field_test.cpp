@@ -49,6 +49,36 @@ TEST(WindField, GustsAreBoundedSmoothAndSeeded) {
   EXPECT_TRUE(seeds_differ);
 }
 
+TEST(WindField, CarriesTheTurbulenceByTheIntegralOfItsSpeed) {
+  WindField wind(WindSettings{{3, 0, 4}, 0.2, 0});  // 5 m/s
+  EXPECT_DOUBLE_EQ(wind.Carried(2), 10);
+  wind.Set(WindSettings{{0, 0, 9}, 0.2, 4}, 2);  // ramps to 9 m/s over 4 s: 28 m more by then
+  EXPECT_DOUBLE_EQ(wind.Carried(2), 10);
+  EXPECT_DOUBLE_EQ(wind.Carried(4), 10 + 2 * 5 + 4 * (2 * 2 / 8.0));
+  EXPECT_DOUBLE_EQ(wind.Carried(6), 10 + 28);
+  EXPECT_DOUBLE_EQ(wind.Carried(7), 10 + 28 + 9);
+}
+
+// A wind set anew at every 2 ms step, strengthening from 6 to 12 m/s over 8 s, late in a
+// session (t = 1000 s): the gusts change as smoothly as in a steady wind. Were the noise
+// carried |w| t, each step's 1.5 mm/s more would move it 1 m = 0.7 gust lengths at once.
+TEST(WindField, GustsStaySmoothWhenTheWindIsSetEveryStep) {
+  const double dt = 0.002, start = 1000;
+  WindField wind(WindSettings{{6, 0, 0}, 0.3, 0});
+  double largest_jump = 0;
+  Vec3 previous = wind.At(start, 0.3);
+  for (int i = 1; i <= 4000; ++i) {
+    const double t = start + i * dt;
+    wind.Set(WindSettings{{6 + 6 * i / 4000.0, 0, 0}, 0.3, 0}, t);
+    const Vec3 w = wind.At(t, 0.3);
+    largest_jump = std::max(largest_jump, std::abs(w[0] - previous[0]));
+    previous = w;
+  }
+  // The steady bound at the strongest wind, as above, plus the change per step of the mean and
+  // of the gusts' amplitude (0.3 of it).
+  EXPECT_LE(largest_jump, 0.3 * 12 * 2 * 1.875 * 12 * dt / WindField::kGustLength + 1.3 * 6 / 4000.0);
+}
+
 TEST(ValueNoise, IsContinuousAcrossLatticePoints) {
   for (int i = -3; i < 3; ++i) {
     EXPECT_NEAR(ValueNoise(5, i - 1e-9), ValueNoise(5, i + 1e-9), 1e-7);
