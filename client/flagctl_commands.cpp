@@ -267,6 +267,11 @@ int Record(const Globals& globals, const std::string& path, double duration) {
     return kUsage;
   }
   const double start = MonotonicSeconds();
+  // A keyframe request first: the server answers with a CHECKPOINT and a full frame, so the log
+  // replays (flagd replay) and exports (flagctl export) from its beginning. Recorded meanwhile;
+  // nobody may answer (a log playing back), and the recording goes on regardless.
+  CommandClient(link.bus, link.channels, std::min(globals.timeout, 1.0))
+      .Send(link.channels.refresh, refresh_request_t{});
   while (!g_stop.load() && !recorder->failed()) {
     const double now = MonotonicSeconds();
     if (duration > 0 && now - start >= duration) break;

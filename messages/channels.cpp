@@ -15,7 +15,9 @@ Channels::Channels(const std::string& prefix_in)
       frame(prefix + "FRAME"),
       params(prefix + "PARAMS"),
       status(prefix + "STATUS"),
-      timeline(prefix + "TIMELINE") {}
+      timeline(prefix + "TIMELINE"),
+      applied(prefix + "APPLIED"),
+      checkpoint(prefix + "CHECKPOINT") {}
 
 std::string Channels::Unprefixed(const std::string& channel) const {
   return channel.compare(0, prefix.size(), prefix) == 0 ? channel.substr(prefix.size()) : channel;

@@ -25,6 +25,9 @@ struct Channels {
   std::string params;    ///< params_t
   std::string status;    ///< status_t
   std::string timeline;  ///< timeline_t
+  // server -> clients, for replay
+  std::string applied;     ///< applied_command_t
+  std::string checkpoint;  ///< checkpoint_t
 
   /// "FLAGSIM_WIND" -> "WIND"; a channel without the prefix comes back unchanged.
   std::string Unprefixed(const std::string& channel) const;

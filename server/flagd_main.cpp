@@ -1,7 +1,9 @@
 // flagd: the flag simulation server. Steps the flag in real time (or as fast as it can), draws
 // and streams its frames as tiles, publishes STATE, PARAMS and STATUS, and takes WIND, PARAM,
-// CAMERA and REFRESH commands over LCM. `flagd render` runs a scene offline instead, into an
-// LCM log and PNG frames (render_command.hpp).
+// CAMERA, KEYFRAME and REFRESH commands over LCM, journaling what replay needs (APPLIED,
+// CHECKPOINT). `flagd render` runs a scene offline instead, into an LCM log and PNG frames
+// (render_command.hpp); `flagd replay` steps a recorded session again and checks it
+// (replay_command.hpp).
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 
@@ -15,6 +17,7 @@
 #include "channels.hpp"
 #include "parameter_table.hpp"
 #include "render_command.hpp"
+#include "replay_command.hpp"
 #include "scene_file.hpp"
 #include "service/server.hpp"
 
@@ -32,6 +35,8 @@ struct Options {
   flagsim::ServerOptions server;
   std::string log_level = "info";
   flagsim::RenderRequest render;
+  std::string replay_log;  ///< flagd replay LOG
+  flagsim::ReplayOptions replay;
   double render_fps = 0;   ///< 0: the scene's frame_rate
   int render_threads = 0;  ///< 0: the scene's threads
 };
@@ -122,12 +127,26 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
   CLI::App* render = AddRenderCommand(app, options);
+  CLI::App* replay = app.add_subcommand(
+      "replay",
+      "step a recorded session again from its log (its first CHECKPOINT, then the APPLIED commands at "
+      "their steps) and check every recorded state hash bit for bit; exit 0 all equal, 1 a difference, "
+      "2 nothing to replay");
+  replay->add_option("log", options.replay_log, "the LCM log (flagctl record, lcm-logger, flagd render)")
+      ->required();
+  replay->add_option("--threads", options.replay.threads, "worker threads (default: as recorded)")
+      ->check(CLI::Range(1, 64));
+  replay->add_option("--prefix", options.prefix, "channel prefix in the log")->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? 0 : 2;
   }
   spdlog::set_level(spdlog::level::from_str(options.log_level));
+  if (replay->parsed()) {
+    options.replay.prefix = options.prefix;
+    return flagsim::RunReplay(options.replay_log, options.replay);
+  }
 
   flagsim::Scene scene;
   try {

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "checked_decode.hpp"
+#include "command_apply.hpp"
 #include "scene_timeline.hpp"
 #include "utime.hpp"
 
@@ -45,65 +46,6 @@ std::string TimelineNote(const sim::Timeline& timeline, const CommandSets& sets)
   if (overlap.empty()) return "";
   return "applied, but the playing timeline sets " + overlap +
          " from the next step on (keyframe pause leaves them to commands)";
-}
-
-/// The timeline operation a KEYFRAME operation code names.
-std::optional<TimelineEdit::Operation> OperationOf(int8_t operation) {
-  switch (operation) {
-    case keyframe_command_t::ADD:
-      return TimelineEdit::kAdd;
-    case keyframe_command_t::CHANGE:
-      return TimelineEdit::kChange;
-    case keyframe_command_t::REMOVE:
-      return TimelineEdit::kRemove;
-    case keyframe_command_t::CLEAR:
-      return TimelineEdit::kClear;
-    case keyframe_command_t::PLAY:
-      return TimelineEdit::kPlay;
-    case keyframe_command_t::PAUSE:
-      return TimelineEdit::kPause;
-    case keyframe_command_t::SEEK:
-      return TimelineEdit::kSeek;
-    case keyframe_command_t::LOOP:
-      return TimelineEdit::kLoop;
-    case keyframe_command_t::SPEED:
-      return TimelineEdit::kSpeed;
-    default:
-      return std::nullopt;
-  }
-}
-
-/// The wire's key as the timeline's; "" or what is wrong with it as sent (its values are checked
-/// with the timeline). `law`: whether key.law is read.
-std::string ReadKey(const timeline_key_t& message, bool law, sim::Keyframe* key) {
-  if (law && (message.law < timeline_key_t::LAW_STEP || message.law > timeline_key_t::LAW_CUBIC)) {
-    return "key.law: " + std::to_string(message.law) +
-           " is not a law; allowed 0 (step), 1 (linear), 2 (smooth), 3 (cubic)";
-  }
-  if (message.num_parameters < 0 || size_t(message.num_parameters) > TimelineLimits::kMaxKeyParameters) {
-    return "key.num_parameters: " + std::to_string(message.num_parameters) + "; allowed 0 .. " +
-           std::to_string(TimelineLimits::kMaxKeyParameters);
-  }
-  key->time = message.time;
-  if (law) key->law = static_cast<sim::ControlLaw>(message.law);
-  if (message.has_wind) {
-    key->wind = sim::WindControl{
-        {message.wind_velocity[0], message.wind_velocity[1], message.wind_velocity[2]}, message.wind_gust};
-  }
-  for (size_t i = 0; i < message.names.size() && i < message.values.size(); ++i) {
-    if (message.names[i].size() > CommandIntake::kMaxNameLength) {
-      return "key.names[" + std::to_string(i) + "]: " + std::to_string(message.names[i].size()) +
-             " characters; allowed up to " + std::to_string(CommandIntake::kMaxNameLength);
-    }
-    key->parameters.push_back({message.names[i], message.values[i]});
-  }
-  if (message.has_camera) {
-    const auto& eye = message.camera_eye;
-    const auto& target = message.camera_target;
-    key->camera =
-        sim::CameraControl{{eye[0], eye[1], eye[2]}, {target[0], target[1], target[2]}, message.camera_fov};
-  }
-  return "";
 }
 
 }  // namespace
@@ -155,6 +97,9 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   ack.accepted = ack.reason.empty();
   if (ack.accepted) ack.reason = note_;
   if (ack.accepted) {
+    // What changes the session goes into the journal; a REFRESH goes when its clean point is made.
+    if (journal_ != nullptr && channel != channels_.refresh)
+      journal_->Applied(session_, channel, data, size, UnixMicros());
     ++stats_.commands_accepted;
     spdlog::info("{} from {} #{}: accepted at step {}", ack.channel, ack.client_id, ack.sequence, ack.step);
   } else {
@@ -203,21 +148,13 @@ void CommandIntake::FlushPending() {
 }
 
 std::string CommandIntake::ApplyWind(const wind_command_t& command) {
-  sim::WindSettings wind;
-  wind.velocity = {command.velocity[0], command.velocity[1], command.velocity[2]};
-  wind.gust = command.gust;
-  wind.ramp_time = command.ramp_time;
-  const std::string problem = session_.ApplyWind(wind);
+  const std::string problem = session_.ApplyWind(WindOf(command));
   if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {true, false, {}});
   return problem;
 }
 
 std::string CommandIntake::ApplyParams(const param_command_t& command) {
-  ParamChange change;
-  change.reset_to_scene = command.reset_to_scene;
-  for (size_t i = 0; i < command.names.size() && i < command.values.size(); ++i) {
-    change.assignments.emplace_back(command.names[i], command.values[i]);
-  }
+  const ParamChange change = ParamChangeOf(command);
   const std::string problem = session_.ApplyParams(change);
   params_changed_ |= problem.empty();
   timeline_changed_ |= problem.empty() && change.reset_to_scene;  // back to the scene's timeline
@@ -232,14 +169,7 @@ std::string CommandIntake::ApplyRefresh(const refresh_request_t& command) {
 }
 
 std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
-  render::CameraMove move;
-  move.operation = command.operation;
-  move.angle = command.angle;
-  move.angle2 = command.angle2;
-  move.vector = Eigen::Vector3d(command.vector[0], command.vector[1], command.vector[2]);
-  move.factor = command.factor;
-  move.width = command.width;
-  move.height = command.height;
+  const render::CameraMove move = CameraMoveOf(command);
   const std::string problem = session_.ApplyCamera(move);
   // The moves of eye and target (a timeline's camera); rotations and scaling of the scene stay.
   const bool moves =
@@ -250,24 +180,9 @@ std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
 }
 
 std::string CommandIntake::ApplyKeyframe(const keyframe_command_t& command) {
-  const std::optional<TimelineEdit::Operation> operation = OperationOf(command.operation);
-  if (!operation) {
-    return "operation: " + std::to_string(command.operation) +
-           " is not known; allowed 1 ADD, 2 REMOVE, 3 CLEAR, 4 PLAY, 5 PAUSE, 6 SEEK, 7 LOOP, 8 SPEED, 9 "
-           "CHANGE";
-  }
   TimelineEdit edit;
-  edit.operation = *operation;
-  edit.time = command.time;
-  edit.speed = command.speed;
-  edit.loop = command.loop;
-  edit.keep_law = command.keep_law;
-  if (edit.operation == TimelineEdit::kAdd || edit.operation == TimelineEdit::kChange) {
-    const bool law = !(edit.operation == TimelineEdit::kChange && command.keep_law);
-    const std::string problem = ReadKey(command.key, law, &edit.key);
-    if (!problem.empty()) return problem;
-  }
-  const std::string problem = session_.ApplyTimeline(edit);
+  std::string problem = TimelineEditOf(command, &edit);
+  if (problem.empty()) problem = session_.ApplyTimeline(edit);
   timeline_changed_ |= problem.empty();
   return problem;
 }

@@ -24,6 +24,7 @@
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "flagsim/wind_command_t.hpp"
+#include "journal.hpp"
 #include "server_stats.hpp"
 #include "session.hpp"
 
@@ -33,8 +34,7 @@ class CommandIntake {
  public:
   static constexpr size_t kMaxCommandBytes = 64 * 1024;
   static constexpr size_t kMaxClientIdLength = 64;
-  static constexpr size_t kMaxNameLength = 64;  ///< characters of a parameter name in a key
-  static constexpr int kQueueCapacity = 256;    ///< per channel, between two Handle() calls
+  static constexpr int kQueueCapacity = 256;  ///< per channel, between two Handle() calls
 
   /// Subscribes to the command channels on `bus`; handlers run inside bus.Handle().
   CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats);
@@ -49,6 +49,9 @@ class CommandIntake {
   void FlushPending();
 
   static constexpr int kSettleSteps = 32;
+
+  /// Where accepted commands are journaled (APPLIED), if anywhere.
+  void SetJournal(Journal* journal) { journal_ = journal; }
 
   /// Once after REFRESH requests: the latest request id (a full STATE and PARAMS and a
   /// keyframe are due); -1 when none came.
@@ -81,6 +84,7 @@ class CommandIntake {
   const Channels& channels_;
   Session& session_;
   ServerStats& stats_;
+  Journal* journal_ = nullptr;
   std::map<std::string, ack_t> last_ack_;  ///< per client id: the answer to its latest command
   std::vector<Settling> settling_;         ///< in the order they were applied
   bool params_changed_ = false;

@@ -14,7 +14,8 @@ OfflineRender::OfflineRender(const Scene& scene, double duration, const Channels
       tolerance_(scene.sim.dt / 2),
       channels_(channels),
       log_(log),
-      on_frame_(std::move(on_frame)) {}
+      on_frame_(std::move(on_frame)),
+      journal_(log, channels) {}
 
 bool OfflineRender::done() const { return session_.simulation().state().time + tolerance_ >= duration_; }
 
@@ -38,8 +39,7 @@ bool OfflineRender::PublishDue() {
   if (log_ != nullptr) log_->AdvanceTo(time);
   if (state_cadence_.Due(time, StateRate(session_), tolerance_)) PublishState();
   if (params_cadence_.Due(time, 1.0, tolerance_)) PublishParams();
-  // The replay channels (commands applied at this step, checkpoints) go out here once the
-  // session records them, before the frame, as the live server applies commands before it draws.
+  journal_.AtBoundary(&session_, log_ != nullptr ? log_->utime() : 0);  // clean points, for replay
   if (!frame_cadence_.Due(time, session_.scene().service.frame_rate, tolerance_)) return false;
   DrawFrame();
   return true;

@@ -4,6 +4,7 @@
 //
 //   STATE    every 1/state_rate s (1 Hz while the flag sleeps), as live
 //   PARAMS   at 0 and every simulated second
+//   CHECKPOINT at 0 and every Journal::kCheckpointSteps steps, so that flagd replay checks it
 //   frame    every 1/frame_rate s: draw; the image to the caller (PNG frames); the changed
 //            tiles picked and compressed by the live server's TileStream (a keyframe first,
 //            then every kKeyframeInterval frames, the rolling refresh), logged paced as the
@@ -17,6 +18,7 @@
 #include <functional>
 
 #include "channels.hpp"
+#include "journal.hpp"
 #include "log_publisher.hpp"
 #include "scene.hpp"
 #include "session.hpp"
@@ -67,6 +69,7 @@ class OfflineRender {
   const Channels& channels_;
   LogPublisher* log_;
   FrameSink on_frame_;
+  Journal journal_;
   TileStream tiles_;
   SimCadence state_cadence_, params_cadence_, frame_cadence_;
   OfflineRenderStats stats_;

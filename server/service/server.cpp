@@ -20,8 +20,11 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
       channels_(channels),
       options_(options),
       session_(scene),
+      journal_(&bus, channels),
       intake_(bus, channels, session_, stats_),
-      paced_(bus) {}
+      paced_(bus) {
+  intake_.SetJournal(&journal_);
+}
 
 void Server::Run(const std::atomic<bool>& stop) {
   while (!stop.load()) {
@@ -39,6 +42,7 @@ double Server::Tick(double now) {
     start_wall_ = last_tick_ = next_second_ = window_wall_start_ = now;
     window_sim_start_ = session_.simulation().state().time;
     window_bytes_start_ = bus_.bytes_published();
+    journal_.AtBoundary(&session_, UnixMicros());  // the session's first checkpoint
   }
   bus_.HandleAll();
   StepDue(now);
@@ -77,6 +81,7 @@ void Server::StepDue(double now) {
 // session, not of the machine's speed. STATE goes out at once; a frame is drawn after the
 // stepping (FrameDue), and a second one falling due before that is skipped.
 void Server::AfterStep() {
+  journal_.AtBoundary(&session_, UnixMicros());
   intake_.AfterStep();
   const double time = session_.simulation().state().time;
   if (state_cadence_.Due(time, StateRate(session_))) PublishState();
@@ -90,6 +95,7 @@ void Server::PublishDue(double now) {
   const int64_t request = intake_.TakeRefreshRequest();
   const bool refresh = request >= 0;
   if (refresh) {
+    journal_.Refresh(&session_, request, UnixMicros());
     PublishState();
     tiles_.RequestKeyframe(request);
     frame_due_ = true;  // the keyframe goes out now, not at the next frame time

@@ -17,6 +17,7 @@
 #include "bus.hpp"
 #include "channels.hpp"
 #include "command_intake.hpp"
+#include "journal.hpp"
 #include "paced_publisher.hpp"
 #include "scene.hpp"
 #include "server_stats.hpp"
@@ -62,6 +63,7 @@ class Server {
   ServerOptions options_;
   Session session_;
   ServerStats stats_;
+  Journal journal_;
   CommandIntake intake_;
   TileStream tiles_;
   PacedPublisher paced_;

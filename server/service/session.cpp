@@ -109,6 +109,18 @@ Session::Session(const Scene& scene)
       simulation_(scene_.sim, scene_.wind, scene.seed),
       render_scene_(render::DefaultRenderScene(float(scene.sim.pole_height))) {}
 
+Session::Session(const SessionSnapshot& snapshot)
+    : initial_(snapshot.initial),
+      scene_(snapshot.scene),
+      simulation_(snapshot.simulation),
+      render_scene_(render::DefaultRenderScene(float(snapshot.scene.sim.pole_height))),
+      substeps_segment_(snapshot.timeline_segment),
+      substeps_fixed_(snapshot.substeps_fixed) {}
+
+SessionSnapshot Session::CleanSnapshot() {
+  return {initial_, scene_, simulation_.CleanSnapshot(), substeps_segment_, substeps_fixed_};
+}
+
 std::string Session::ApplyWind(const sim::WindSettings& wind) {
   const std::string problem = ParameterTable::CheckWind(wind);
   if (!problem.empty()) return problem;

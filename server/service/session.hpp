@@ -46,9 +46,23 @@ struct TimelineEdit {
   sim::Keyframe key;
 };
 
+/// A session at a clean point (Session::CleanSnapshot): all its next steps depend on.
+struct SessionSnapshot {
+  Scene initial;  ///< the scene it started from
+  Scene scene;    ///< the scene as it stands
+  sim::SimulationSnapshot<float> simulation;
+  int timeline_segment = -1;    ///< the segment the substeps were fixed for; -1: none
+  bool substeps_fixed = false;  ///< by the timeline
+};
+
 class Session {
  public:
   explicit Session(const Scene& scene);
+  /// Resumes from a snapshot: its next steps are those the snapshot's session takes.
+  explicit Session(const SessionSnapshot& snapshot);
+
+  /// Makes this step boundary a clean point (sim::Simulation::CleanSnapshot) and returns it.
+  SessionSnapshot CleanSnapshot();
 
   /// Applies a wind setting; returns "" or why it was rejected (then nothing changed).
   std::string ApplyWind(const sim::WindSettings& wind);

@@ -126,10 +126,6 @@ class Timeline {
   void StartGlide(const Controls& from);
   bool gliding() const { return glide_.has_value(); }
 
-  bool operator==(const Timeline& other) const;
-  bool operator!=(const Timeline& other) const { return !(*this == other); }
-
- private:
   /// A glide under way: how long it has run, and the jump it smooths: from the timeline's values
   /// when it started (`start`) to the values then in force (`from`).
   struct Glide {
@@ -137,6 +133,14 @@ class Timeline {
     Controls from;
     Controls start;
   };
+  /// The glide under way, and setting one back (from a checkpoint).
+  const std::optional<Glide>& glide() const { return glide_; }
+  void RestoreGlide(const std::optional<Glide>& glide) { glide_ = glide; }
+
+  bool operator==(const Timeline& other) const;
+  bool operator!=(const Timeline& other) const { return !(*this == other); }
+
+ private:
   Controls Interpolated(double position) const;
 
   std::vector<Keyframe> keys_;

@@ -17,36 +17,7 @@ cleanup() {
 }
 trap cleanup EXIT
 
-failures=0
-passes=0
-# expect CODE DESCRIPTION COMMAND...: runs COMMAND, checks its exit code, keeps its output.
-expect() {
-  local code=$1 what=$2
-  shift 2
-  local got=0
-  "$@" >"$work/out" 2>&1 || got=$?
-  if [[ $got == "$code" ]]; then
-    passes=$((passes + 1))
-    echo "ok    $what (exit $got)"
-  else
-    failures=$((failures + 1))
-    echo "FAIL  $what: exit $got, expected $code"
-    sed 's/^/      /' "$work/out"
-  fi
-}
-# found GREP_MODE PATTERN DESCRIPTION: the last command's output has PATTERN.
-found() {
-  if grep -q "$1" -- "$2" "$work/out"; then
-    passes=$((passes + 1))
-    echo "ok    $3"
-  else
-    failures=$((failures + 1))
-    echo "FAIL  $3: no '$2' in:"
-    sed 's/^/      /' "$work/out"
-  fi
-}
-contains() { found -F "$@"; }  # fixed text
-matches() { found -E "$@"; }   # extended regular expression
+source "$(dirname "$0")/checks.sh"
 
 echo "-- startup errors"
 expect 2 "flagd rejects an unknown scene" "$flagd" --scene no-such-scene
@@ -168,5 +139,4 @@ if [[ $code == 0 ]]; then passes=$((passes + 1)); echo "ok    flagctl watch read
 else failures=$((failures + 1)); echo "FAIL  flagctl watch on playback: exit $code"; fi
 contains "states received" "  and sees its states"
 
-echo "$passes passed, $failures failed"
-((failures == 0))
+finish

@@ -1,0 +1,177 @@
+#include "replay.hpp"
+
+#include <cinttypes>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "channels.hpp"
+#include "checked_decode.hpp"
+#include "checkpoint_codec.hpp"
+#include "command_apply.hpp"
+#include "event_log_reader.hpp"
+#include "flagsim/applied_command_t.hpp"
+#include "flagsim/state_t.hpp"
+#include "journal.hpp"
+
+namespace flagsim {
+namespace {
+
+constexpr size_t kMaxMessageBytes = 256 << 20;  ///< a checkpoint of the largest grid fits
+
+std::string Hex(uint64_t value) {
+  char text[20];
+  std::snprintf(text, sizeof(text), "%016" PRIx64, value);
+  return text;
+}
+
+/// The replayed session and where the log stands.
+class Replayer {
+ public:
+  Replayer(const ReplayOptions& options, ReplayReport* report) : options_(options), report_(*report) {}
+
+  /// Handles one event; false once replay must stop (a difference, or a new session).
+  bool Handle(const std::string& channel, const std::vector<uint8_t>& data);
+  bool started() const { return session_ != nullptr; }
+
+ private:
+  template <class Message>
+  std::optional<Message> Decode(const std::vector<uint8_t>& data) const {
+    std::string error;
+    return wire::CheckedDecode<Message>(data.data(), data.size(), kMaxMessageBytes, &error);
+  }
+  bool Resume(const checkpoint_t& checkpoint);
+  /// Steps on to `step`, making the periodic clean points on the way; false if `step` is behind.
+  bool AdvanceTo(int64_t step);
+  bool Check(const char* what, int64_t step, uint64_t recorded);
+  bool Apply(const applied_command_t& command);
+  bool Differ(int64_t step, const std::string& what);
+
+  ReplayOptions options_;
+  ReplayReport& report_;
+  Channels channels_{options_.prefix};
+  std::unique_ptr<Session> session_;
+};
+
+bool Replayer::Handle(const std::string& channel, const std::vector<uint8_t>& data) {
+  if (channel == channels_.checkpoint) {
+    const std::optional<checkpoint_t> checkpoint = Decode<checkpoint_t>(data);
+    if (!checkpoint) return true;  // a damaged one: the next will do
+    if (!started()) return Resume(*checkpoint);
+    if (checkpoint->step < session_->simulation().state().step || checkpoint->reason == "start") {
+      report_.log_end = "a new session starts at step " + std::to_string(checkpoint->step) + " (" +
+                        checkpoint->reason + " checkpoint); replayed the first";
+      return false;
+    }
+    return AdvanceTo(checkpoint->step) &&
+           Check("checkpoint", checkpoint->step, uint64_t(checkpoint->state_hash));
+  }
+  if (!started()) return true;
+  if (channel == channels_.applied) {
+    const std::optional<applied_command_t> command = Decode<applied_command_t>(data);
+    return !command || Apply(*command);
+  }
+  if (channel == channels_.state) {
+    const std::optional<state_t> state = Decode<state_t>(data);
+    if (!state) return true;
+    if (state->step < session_->simulation().state().step) {
+      ++report_.skipped;
+      return true;
+    }
+    return AdvanceTo(state->step) && Check("state", state->step, uint64_t(state->state_hash));
+  }
+  return true;
+}
+
+bool Replayer::Resume(const checkpoint_t& checkpoint) {
+  SessionSnapshot snapshot;
+  const std::string problem = ReadCheckpoint(checkpoint, &snapshot);
+  if (!problem.empty()) {
+    report_.error = problem;
+    return false;
+  }
+  if (options_.threads > 0)
+    snapshot.scene.sim.threads = snapshot.simulation.params.threads = options_.threads;
+  session_ = std::make_unique<Session>(snapshot);
+  report_.first_step = report_.last_step = checkpoint.step;
+  report_.first_reason = checkpoint.reason;
+  report_.threads = snapshot.simulation.params.threads;
+  return true;
+}
+
+bool Replayer::AdvanceTo(int64_t step) {
+  while (session_->simulation().state().step < step) {
+    session_->Step();
+    if (Journal::PeriodicCheckpointAt(session_->simulation().state().step)) session_->CleanSnapshot();
+  }
+  report_.last_step = session_->simulation().state().step;
+  return true;
+}
+
+bool Replayer::Check(const char* what, int64_t step, uint64_t recorded) {
+  const uint64_t replayed = session_->simulation().Hash();
+  (std::string(what) == "state" ? report_.states_checked : report_.checkpoints_checked) += 1;
+  if (replayed == recorded) return true;
+  return Differ(step, std::string(what) + " hash at step " + std::to_string(step) + ": recorded " +
+                          Hex(recorded) + ", replayed " + Hex(replayed));
+}
+
+bool Replayer::Apply(const applied_command_t& command) {
+  if (command.step < session_->simulation().state().step) {
+    return Differ(command.step, command.channel + " applied at step " + std::to_string(command.step) +
+                                    ", behind the replay at step " +
+                                    std::to_string(session_->simulation().state().step));
+  }
+  AdvanceTo(command.step);
+  ++report_.commands;
+  if (command.channel == "REFRESH") {
+    session_->CleanSnapshot();
+    return true;
+  }
+  const std::string problem = ApplyCommandBytes(command.channel, command.data, session_.get());
+  if (problem.empty()) return true;
+  return Differ(command.step, command.channel + " at step " + std::to_string(command.step) +
+                                  " was applied live but not in the replay: " + problem);
+}
+
+bool Replayer::Differ(int64_t step, const std::string& what) {
+  report_.divergence = what;
+  report_.divergence_step = step;
+  return false;
+}
+
+}  // namespace
+
+ReplayReport Replay(const std::string& path, const ReplayOptions& options,
+                    const std::function<void(double)>& progress) {
+  ReplayReport report;
+  std::unique_ptr<EventLogReader> reader;
+  try {
+    reader = std::make_unique<EventLogReader>(path);
+  } catch (const std::exception& error) {
+    report.error = error.what();
+    return report;
+  }
+  Replayer replayer(options, &report);
+  const Channels channels(options.prefix);
+  const auto wanted = [&channels](const std::string& channel) {
+    return channel == channels.checkpoint || channel == channels.applied || channel == channels.state;
+  };
+  LogEvent event;
+  int64_t events = 0;
+  bool going = true;
+  while (going && reader->Next(&event, wanted)) {
+    if (wanted(event.channel)) going = replayer.Handle(event.channel, event.data);
+    if (progress && ++events % 256 == 0 && reader->size() > 0)
+      progress(double(reader->offset()) / reader->size());
+  }
+  if (going && reader->end() != EventLogReader::End::kClean) report.log_end = reader->problem();
+  if (report.error.empty() && !replayer.started()) {
+    report.error = path + ": no whole CHECKPOINT on " + channels.checkpoint +
+                   " (a log recorded from a server that publishes checkpoints, with the same --prefix)";
+  }
+  if (progress) progress(1.0);
+  return report;
+}
+
+}  // namespace flagsim

@@ -1,0 +1,38 @@
+# Checks shared by the integration scripts (sourced; they set $work, a scratch directory). Each
+# prints "ok" or "FAIL" with what it checked and counts it; the script ends with
+# `finish`, which exits 1 if any check failed.
+failures=0
+passes=0
+# expect CODE DESCRIPTION COMMAND...: runs COMMAND, checks its exit code, keeps its output.
+expect() {
+  local code=$1 what=$2
+  shift 2
+  local got=0
+  "$@" >"$work/out" 2>&1 || got=$?
+  if [[ $got == "$code" ]]; then
+    passes=$((passes + 1))
+    echo "ok    $what (exit $got)"
+  else
+    failures=$((failures + 1))
+    echo "FAIL  $what: exit $got, expected $code"
+    sed 's/^/      /' "$work/out"
+  fi
+}
+# found GREP_MODE PATTERN DESCRIPTION: the last command's output has PATTERN.
+found() {
+  if grep -q "$1" -- "$2" "$work/out"; then
+    passes=$((passes + 1))
+    echo "ok    $3"
+  else
+    failures=$((failures + 1))
+    echo "FAIL  $3: no '$2' in:"
+    sed 's/^/      /' "$work/out"
+  fi
+}
+contains() { found -F "$@"; }  # fixed text
+matches() { found -E "$@"; }   # extended regular expression
+# finish: the tally, and the exit code.
+finish() {
+  echo "$passes passed, $failures failed"
+  [[ $failures == 0 ]]
+}
