@@ -26,24 +26,7 @@ void WriteParameters(const Scene& scene, std::vector<std::string>* names, std::v
 
 controls_t MakeControls(const sim::Controls& controls) {
   controls_t message{};
-  message.has_wind = controls.wind.has_value();
-  if (controls.wind) {
-    for (int k = 0; k < 3; ++k) message.wind_velocity[k] = controls.wind->velocity[k];
-    message.wind_gust = controls.wind->gust;
-  }
-  for (const sim::ParameterControl& parameter : controls.parameters) {
-    message.names.push_back(parameter.name);
-    message.values.push_back(parameter.value);
-  }
-  message.num_parameters = static_cast<int32_t>(message.names.size());
-  message.has_camera = controls.camera.has_value();
-  if (controls.camera) {
-    for (int k = 0; k < 3; ++k) {
-      message.camera_eye[k] = controls.camera->eye[k];
-      message.camera_target[k] = controls.camera->target[k];
-    }
-    message.camera_fov = controls.camera->fov;
-  }
+  WriteControls(controls.wind, controls.parameters, controls.camera, &message);
   return message;
 }
 

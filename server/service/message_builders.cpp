@@ -76,24 +76,7 @@ timeline_key_t MakeKeyMessage(const sim::Keyframe& key) {
   timeline_key_t message{};
   message.time = key.time;
   message.law = static_cast<int8_t>(key.law);  // ControlLaw's order is the LAW_* constants'
-  message.has_wind = key.wind.has_value();
-  if (key.wind) {
-    for (int k = 0; k < 3; ++k) message.wind_velocity[k] = key.wind->velocity[k];
-    message.wind_gust = key.wind->gust;
-  }
-  for (const sim::ParameterControl& parameter : key.parameters) {
-    message.names.push_back(parameter.name);
-    message.values.push_back(parameter.value);
-  }
-  message.num_parameters = static_cast<int32_t>(message.names.size());
-  message.has_camera = key.camera.has_value();
-  if (key.camera) {
-    for (int k = 0; k < 3; ++k) {
-      message.camera_eye[k] = key.camera->eye[k];
-      message.camera_target[k] = key.camera->target[k];
-    }
-    message.camera_fov = key.camera->fov;
-  }
+  WriteControls(key.wind, key.parameters, key.camera, &message);
   return message;
 }
 

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <vector>
 
 #include "flagsim/params_t.hpp"
 #include "flagsim/state_t.hpp"
@@ -29,6 +31,32 @@ FrameInfo MakeFrameInfo(const Session& session, int64_t utime);
 params_t MakeParamsMessage(const Scene& scene, int64_t utime);
 
 /// The timeline: its keys (what each sets), play state and position; `step` the step it stands at.
+/// Writes controls (a key's, or a glide's) into a message with the fields timeline_key_t and
+/// controls_t share: has_wind, wind_velocity, wind_gust, names, values, has_camera, camera_*.
+template <class Message>
+void WriteControls(const std::optional<sim::WindControl>& wind,
+                   const std::vector<sim::ParameterControl>& parameters,
+                   const std::optional<sim::CameraControl>& camera, Message* message) {
+  message->has_wind = wind.has_value();
+  if (wind) {
+    for (int k = 0; k < 3; ++k) message->wind_velocity[k] = wind->velocity[k];
+    message->wind_gust = wind->gust;
+  }
+  for (const sim::ParameterControl& parameter : parameters) {
+    message->names.push_back(parameter.name);
+    message->values.push_back(parameter.value);
+  }
+  message->num_parameters = static_cast<int32_t>(message->names.size());
+  message->has_camera = camera.has_value();
+  if (camera) {
+    for (int k = 0; k < 3; ++k) {
+      message->camera_eye[k] = camera->eye[k];
+      message->camera_target[k] = camera->target[k];
+    }
+    message->camera_fov = camera->fov;
+  }
+}
+
 timeline_t MakeTimelineMessage(const sim::Timeline& timeline, int64_t step, int64_t utime);
 
 /// What passed since the last STATUS.
