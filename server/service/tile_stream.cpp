@@ -31,13 +31,16 @@ tile_t EncodeTile(const std::vector<uint8_t>& pixels, ZSTD_CCtx* context) {
   return tile;
 }
 
-/// XXH3-64 of the tile's rows, as if they were copied out back to back.
-uint64_t TileHash(const render::Framebuffer& image, const TileBox& box, XXH3_state_t* hasher) {
-  XXH3_64bits_reset(hasher);
+/// XXH3-64 of the tile's rows copied out back to back into `scratch`: one pass of the one-shot
+/// hash over 12 KB, several times faster than feeding the streaming hash 192-byte rows.
+uint64_t TileHash(const render::Framebuffer& image, const TileBox& box, std::vector<uint8_t>* scratch) {
+  const size_t row_bytes = size_t(box.width) * 3;
+  scratch->resize(row_bytes * box.height);
   for (int row = 0; row < box.height; ++row) {
-    XXH3_64bits_update(hasher, image.Pixel(box.x, box.y + row), size_t(box.width) * 3);
+    const uint8_t* source = image.Pixel(box.x, box.y + row);
+    std::copy(source, source + row_bytes, scratch->data() + row * row_bytes);
   }
-  return XXH3_64bits_digest(hasher);
+  return XXH3_64bits(scratch->data(), scratch->size());
 }
 
 }  // namespace
@@ -86,10 +89,9 @@ EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInf
   std::vector<uint64_t> hashes(tiles);
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
-    const std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> hasher(XXH3_createState(),
-                                                                                 XXH3_freeState);
+    std::vector<uint8_t> scratch;
 #pragma omp for schedule(static)
-    for (int t = 0; t < tiles; ++t) hashes[t] = TileHash(image, TileRect(t), hasher.get());
+    for (int t = 0; t < tiles; ++t) hashes[t] = TileHash(image, TileRect(t), &scratch);
   }
   std::vector<int32_t> chosen;
   for (int t = 0; t < tiles; ++t) {

@@ -7,14 +7,15 @@ passes=0
 expect() {
   local code=$1 what=$2
   shift 2
-  local got=0
+  local got=0 start=$SECONDS
   "$@" >"$work/out" 2>&1 || got=$?
+  local took=$((SECONDS - start))
   if [[ $got == "$code" ]]; then
     passes=$((passes + 1))
-    echo "ok    $what (exit $got)"
+    echo "ok    $what (exit $got, ${took} s)"
   else
     failures=$((failures + 1))
-    echo "FAIL  $what: exit $got, expected $code"
+    echo "FAIL  $what: exit $got after ${took} s, expected $code"
     sed 's/^/      /' "$work/out"
   fi
 }

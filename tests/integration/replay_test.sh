@@ -48,6 +48,8 @@ expect 0 "keyframe pause" ctl keyframe pause
 expect 0 "reset to the scene" ctl reset
 wait $full $mid || true
 full="" mid=""
+kill $server && wait $server || true  # the replays below have the machine to themselves
+server=""
 
 echo "-- replayed from the start"
 expect 0 "flagd replay, 1 thread" "$flagd" replay "$work/full.lcmlog" --prefix $prefix --threads 1
