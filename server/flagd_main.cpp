@@ -1,7 +1,7 @@
 // flagd: the flag simulation server. Steps the flag in real time (or as fast as it can), draws
 // and streams its frames as tiles, publishes STATE, PARAMS and STATUS, and takes WIND, PARAM,
 // CAMERA, KEYFRAME and REFRESH commands over LCM, journaling what replay needs (APPLIED,
-// CHECKPOINT). `flagd render` runs a scene offline instead, into an LCM log and PNG frames
+// CHECKPOINT), and with --record-inputs into a log of its own too. `flagd render` runs a scene offline instead, into an LCM log and PNG frames
 // (render_command.hpp); `flagd replay` steps a recorded session again and checks it
 // (replay_command.hpp).
 #include <spdlog/spdlog.h>
@@ -123,6 +123,9 @@ int main(int argc, char** argv) {
   app.add_option("--duration", options.server.duration,
                  "stop after this many simulated seconds (0: run until stopped)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--record-inputs", options.server.inputs_log,
+                 "also write what a replay needs (each applied command, the checkpoints) into this LCM "
+                 "log, for `flagd replay`");
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
@@ -175,6 +178,8 @@ int main(int argc, char** argv) {
     spdlog::info("flagd: scene '{}' ({}x{} nodes), {} on {} with prefix {}", scene.name, scene.sim.cols,
                  scene.sim.rows, options.server.fast ? "as fast as possible" : "in real time", bus.url(),
                  channels.prefix);
+    if (!options.server.inputs_log.empty())
+      spdlog::info("flagd: recording its inputs to {}", options.server.inputs_log);
     server.Run(g_stop);
     const auto& state = server.session().simulation().state();
     rusage usage{};

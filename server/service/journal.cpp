@@ -25,6 +25,8 @@ void Journal::Refresh(Session* session, int64_t request, int64_t utime) {
   PublishCheckpoint(session, "refresh", utime);
 }
 
+void Journal::End(Session* session, int64_t utime) { PublishCheckpoint(session, "end", utime); }
+
 void Journal::Applied(const Session& session, const std::string& channel, const uint8_t* data, size_t size,
                       int64_t utime) {
   if (publisher_ == nullptr) return;

@@ -2,7 +2,7 @@
 // the others so that any recording of the bus (flagctl record, lcm-logger) carries it.
 //
 //   CHECKPOINT  the session at a clean point (Session::CleanSnapshot): at the start (step 0),
-//               every kCheckpointSteps steps, and at each keyframe request
+//               every kCheckpointSteps steps, at each keyframe request, and at the end
 //   APPLIED     each command as it came, with the step at whose start it took effect, in the
 //               order applied; a keyframe request appears as REFRESH, since it makes a clean
 //               point (which replay must make too)
@@ -39,6 +39,9 @@ class Journal {
   /// A keyframe request (REFRESH, request id `request`): a clean point now, journaled, and its
   /// CHECKPOINT.
   void Refresh(Session* session, int64_t request, int64_t utime);
+  /// The session's end (the server stopping): its last CHECKPOINT, so that a replay of a log
+  /// that runs to the end checks the end too.
+  void End(Session* session, int64_t utime);
   /// A command `session` took at its current step: `channel` with the prefix, `data` as it came.
   void Applied(const Session& session, const std::string& channel, const uint8_t* data, size_t size,
                int64_t utime);

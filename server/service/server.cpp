@@ -20,7 +20,9 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
       channels_(channels),
       options_(options),
       session_(scene),
-      journal_(&bus, channels),
+      inputs_(options.inputs_log.empty() ? nullptr
+                                         : std::make_unique<InputsLog>(bus, options.inputs_log, UnixMicros())),
+      journal_(inputs_ ? static_cast<Publisher*>(inputs_.get()) : &bus, channels),
       intake_(bus, channels, session_, stats_),
       paced_(bus) {
   intake_.SetJournal(&journal_);
@@ -33,6 +35,8 @@ void Server::Run(const std::atomic<bool>& stop) {
     bus_.Handle(static_cast<int>(std::ceil(wait * 1000)));
   }
   intake_.FlushPending();
+  journal_.End(&session_, UnixMicros());
+  if (inputs_) inputs_->Close();
   PublishState();  // the last word: where the flag stopped
   PublishStatus(MonotonicSeconds());
 }
@@ -81,6 +85,7 @@ void Server::StepDue(double now) {
 // session, not of the machine's speed. STATE goes out at once; a frame is drawn after the
 // stepping (FrameDue), and a second one falling due before that is skipped.
 void Server::AfterStep() {
+  if (inputs_) inputs_->AdvanceTo(session_.simulation().state().time);
   journal_.AtBoundary(&session_, UnixMicros());
   intake_.AfterStep();
   const double time = session_.simulation().state().time;

@@ -13,10 +13,13 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
+#include <string>
 
 #include "bus.hpp"
 #include "channels.hpp"
 #include "command_intake.hpp"
+#include "inputs_log.hpp"
 #include "journal.hpp"
 #include "paced_publisher.hpp"
 #include "scene.hpp"
@@ -30,13 +33,16 @@ namespace flagsim {
 struct ServerOptions {
   bool fast = false;    ///< step as fast as possible instead of in real time
   double duration = 0;  ///< s of simulated time to run, 0 = until stopped
+  std::string inputs_log;  ///< if set, the journal also goes into this LCM log (inputs_log.hpp)
 };
 
 class Server {
  public:
+  /// Throws std::runtime_error naming the file if options.inputs_log cannot be written.
   Server(Bus& bus, const Channels& channels, const Scene& scene, const ServerOptions& options);
 
-  /// Runs until `stop` becomes true or the duration is reached.
+  /// Runs until `stop` becomes true or the duration is reached; then the end CHECKPOINT (and
+  /// closes the inputs log), the last STATE and STATUS.
   void Run(const std::atomic<bool>& stop);
 
   /// One pass of the loop at wall time `now` (s, monotonic): handle waiting commands, step what
@@ -63,6 +69,7 @@ class Server {
   ServerOptions options_;
   Session session_;
   ServerStats stats_;
+  std::unique_ptr<InputsLog> inputs_;  ///< null unless recording its inputs
   Journal journal_;
   CommandIntake intake_;
   TileStream tiles_;

@@ -2,8 +2,9 @@
 # A live session recorded and replayed: flagd over udpm:// inside a private network namespace
 # (ctest runs this through scripts/netns-run) takes wind, parameter, keyframe, camera and
 # refresh commands while two flagctl recorders run, one from the start and one from
-# mid-session; flagd replay then steps each log again and checks every state hash, at 1 and 2
-# threads, and a copy of a log cut mid-event replays up to where it ends. Velocity Verlet carries
+# mid-session, and flagd records its own inputs; flagd replay then steps each log again and
+# checks every state hash (the inputs log: every checkpoint's), at 1 and 2 threads, and a copy of
+# a log cut mid-event replays up to where it ends. Velocity Verlet carries
 # forces between substeps, so a clean point made live but not in the replay would show.
 # Usage: replay_test.sh BUILD_DIR
 set -euo pipefail
@@ -22,7 +23,7 @@ trap cleanup EXIT
 source "$(dirname "$0")/checks.sh"
 ctl() { "$flagctl" --prefix $prefix --timeout 3 "$@"; }
 
-"$flagd" --prefix $prefix --log-level warn --set cols=16 --set rows=12 --set threads=2 --set frame_rate=10 --set integrator=verlet &
+"$flagd" --prefix $prefix --log-level warn --record-inputs "$work/inputs.lcmlog" --set cols=16 --set rows=12 --set threads=2 --set frame_rate=10 --set integrator=verlet &
 server=$!
 sleep 1
 ctl record -o "$work/full.lcmlog" --duration 9 >"$work/full.out" 2>&1 &
@@ -48,8 +49,9 @@ expect 0 "keyframe pause" ctl keyframe pause
 expect 0 "reset to the scene" ctl reset
 wait $full $mid || true
 full="" mid=""
-kill $server && wait $server || true  # the replays below have the machine to themselves
-server=""
+kill $server  # it stops cleanly: the end checkpoint, and its inputs log closed
+expect 0 "flagd stops on SIGTERM" wait $server
+server=""  # the replays below have the machine to themselves
 
 echo "-- replayed from the start"
 expect 0 "flagd replay, 1 thread" "$flagd" replay "$work/full.lcmlog" --prefix $prefix --threads 1
@@ -63,6 +65,13 @@ echo "-- recorded from mid-session"
 expect 0 "flagd replay of the later recording" "$flagd" replay "$work/mid.lcmlog" --prefix $prefix
 contains "refresh checkpoint" "  resumes at the checkpoint its recorder asked for"
 contains "every hash equal" "  every recorded hash equal"
+
+echo "-- the server's own record of its inputs (--record-inputs)"
+expect 0 "flagd replay of the inputs log" "$flagd" replay "$work/inputs.lcmlog" --prefix $prefix
+contains "resumed at step 0 (start checkpoint)" "  from the session's start"
+matches " ([89]|[1-9][0-9]+) command\(s\) applied, 0 state and [1-9][0-9]* checkpoint" \
+  "  with the session's commands, checked at its checkpoints"
+contains "every hash equal" "  every checkpoint hash equal"
 
 echo "-- a log cut mid-event"
 size=$(stat -c %s "$work/full.lcmlog")
