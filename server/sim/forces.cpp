@@ -168,11 +168,15 @@ void ForceEvaluator<Real>::Resize(const ClothModel<Real>& model) {
 template <typename Real>
 void ForceEvaluator<Real>::SampleWind(const ClothModel<Real>& model, const WindField& wind, double t) {
   // Gusts vary along the flag; one sample per cell column, at the column's middle.
-  for (int c = 0; c + 1 < model.cols; ++c) {
-    const Vec3 w = wind.At(t, (c + 0.5) * double(model.dx));
-    column_wind_x_[c] = Real(w[0]);
-    column_wind_y_[c] = Real(w[1]);
-    column_wind_z_[c] = Real(w[2]);
+  const int columns = model.cols - 1;
+  column_s_.resize(columns);
+  column_wind_.resize(columns);
+  for (int c = 0; c < columns; ++c) column_s_[c] = (c + 0.5) * double(model.dx);
+  wind.Along(t, column_s_.data(), columns, column_wind_.data());
+  for (int c = 0; c < columns; ++c) {
+    column_wind_x_[c] = Real(column_wind_[c][0]);
+    column_wind_y_[c] = Real(column_wind_[c][1]);
+    column_wind_z_[c] = Real(column_wind_[c][2]);
   }
 }
 

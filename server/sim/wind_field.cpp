@@ -22,13 +22,18 @@ double LatticeValue(uint64_t seed, int64_t i) {
 
 }  // namespace
 
-double ValueNoise(uint64_t seed, double u) {
+double NoiseCursor::operator()(double u) {
   const double cell = std::floor(u);
   const double f = u - cell;
   const double blend = f * f * f * (f * (f * 6 - 15) + 10);  // C2-continuous
   const int64_t i = static_cast<int64_t>(cell);
-  const double a = LatticeValue(seed, i), b = LatticeValue(seed, i + 1);
-  return a + (b - a) * blend;
+  if (!valid_ || i != cell_) {
+    a_ = LatticeValue(seed_, i);
+    b_ = LatticeValue(seed_, i + 1);
+    cell_ = i;
+    valid_ = true;
+  }
+  return a_ + (b_ - a_) * blend;
 }
 
 WindField::WindField(const WindSettings& settings, uint64_t seed)
@@ -85,13 +90,23 @@ double WindField::Carried(double t) const {
 }
 
 Vec3 WindField::At(double t, double s) const {
-  Vec3 wind = Mean(t);
-  const double speed = Speed(wind);
-  const double amplitude = Gust(t) * speed;
-  if (amplitude == 0) return wind;
-  const double u = (Carried(t) - s) / kGustLength;
-  for (int k = 0; k < 3; ++k) wind[k] += amplitude * ValueNoise(seed_ + 0x51ed27 * (k + 1), u);
+  Vec3 wind;
+  Along(t, &s, 1, &wind);
   return wind;
+}
+
+void WindField::Along(double t, const double* s, int count, Vec3* out) const {
+  const Vec3 mean = Mean(t);
+  const double amplitude = Gust(t) * Speed(mean);
+  const double carried = amplitude == 0 ? 0 : Carried(t);
+  NoiseCursor noise[3] = {NoiseCursor(seed_ + 0x51ed27), NoiseCursor(seed_ + 0x51ed27 * 2),
+                          NoiseCursor(seed_ + 0x51ed27 * 3)};
+  for (int j = 0; j < count; ++j) {
+    out[j] = mean;
+    if (amplitude == 0) continue;
+    const double u = (carried - s[j]) / kGustLength;
+    for (int k = 0; k < 3; ++k) out[j][k] += amplitude * noise[k](u);
+  }
 }
 
 }  // namespace flagsim::sim

@@ -41,6 +41,10 @@ class WindField {
   /// coordinate): Mean(t) + Gust(t) |Mean(t)| N((Carried(t) - s) / kGustLength), where N is
   /// smooth noise in [-1, 1] per component. Frozen turbulence carried by the mean wind.
   Vec3 At(double t, double s) const;
+  /// out[j] = At(t, s[j]) for j in [0, count), bit for bit, in less time: what depends on t
+  /// alone (the mean, the gusts' size, the distance carried) is computed once, and each lattice
+  /// value of the noise once while consecutive points share a lattice cell.
+  void Along(double t, const double* s, int count, Vec3* out) const;
   /// m: how far the mean wind has carried the turbulence by time t, the integral of its speed
   /// (|w| t for a wind that never changed). A new setting goes on from where the last one had
   /// carried it, so the gusts never jump when the wind changes, however often it does. Over a
@@ -63,7 +67,19 @@ class WindField {
   uint64_t seed_;
 };
 
-/// Smooth 1D value noise in [-1, 1]: quintic blend between hashed values at integers.
-double ValueNoise(uint64_t seed, double u);
+/// Smooth 1D value noise in [-1, 1] (a quintic blend between hashed values at the integers),
+/// evaluated at u after u: the hashed values of the last lattice cell are kept, so consecutive
+/// u in one cell cost no hashing.
+class NoiseCursor {
+ public:
+  explicit NoiseCursor(uint64_t seed) : seed_(seed) {}
+  double operator()(double u);
+
+ private:
+  uint64_t seed_;
+  bool valid_ = false;
+  int64_t cell_ = 0;   ///< the lattice cell [cell_, cell_ + 1] that a_ and b_ belong to
+  double a_ = 0, b_ = 0;
+};
 
 }  // namespace flagsim::sim

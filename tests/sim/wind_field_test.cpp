@@ -79,9 +79,28 @@ TEST(WindField, GustsStaySmoothWhenTheWindIsSetEveryStep) {
   EXPECT_LE(largest_jump, 0.3 * 12 * 2 * 1.875 * 12 * dt / WindField::kGustLength + 1.3 * 6 / 4000.0);
 }
 
-TEST(ValueNoise, IsContinuousAcrossLatticePoints) {
-  for (int i = -3; i < 3; ++i) {
-    EXPECT_NEAR(ValueNoise(5, i - 1e-9), ValueNoise(5, i + 1e-9), 1e-7);
+TEST(NoiseCursor, IsContinuousAcrossLatticePoints) {
+  NoiseCursor noise(5);
+  for (int i = -3; i < 3; ++i) EXPECT_NEAR(noise(i - 1e-9), noise(i + 1e-9), 1e-7);
+}
+
+TEST(NoiseCursor, KeptLatticeValuesGiveWhatFreshOnesGive) {
+  NoiseCursor kept(5);
+  // Forwards, backwards, within a cell and across several.
+  for (const double u : {0.1, 0.4, 0.9, 1.2, 0.7, -2.5, -2.4, 3.0, 2.999, 7.5}) {
+    EXPECT_EQ(kept(u), NoiseCursor(5)(u)) << "u = " << u;
+  }
+}
+
+TEST(WindField, AlongTheFlagIsAtAtEachPointBitForBit) {
+  WindField wind(WindSettings{{6, 0, 1.5}, 0.2, 0}, 3);
+  wind.Set(WindSettings{{8, 1, -2}, 0.4, 0.5}, 1.0);  // mid-ramp below: the mean and gusts move
+  std::vector<double> s(40);
+  for (size_t c = 0; c < s.size(); ++c) s[c] = (c + 0.5) * (1.5 / 40);
+  for (const double t : {0.0, 1.2, 9.7}) {
+    std::vector<Vec3> along(s.size());
+    wind.Along(t, s.data(), int(s.size()), along.data());
+    for (size_t c = 0; c < s.size(); ++c) EXPECT_EQ(along[c], wind.At(t, s[c])) << "t = " << t << ", c = " << c;
   }
 }
 
