@@ -1,10 +1,13 @@
 // Thread sweep, like the seed's timing study: wall time per step of the breeze preset's flag
 // (symplectic Euler and implicit Euler, float, automatic substeps) at 1 to 4 threads, 32 x 24
-// to 512 x 384 nodes; the median of five runs of enough steps to fill a fifth of a second.
-// Speedup = time(1) / time(n), efficiency = speedup / n. The machine's core count bounds what
-// more threads can give; the determinism of the result at any count is tested elsewhere.
+// to 512 x 384 nodes. The thread counts take turns, five rounds of a fifth of a second each (or
+// one step, if longer), so that a change in the machine's speed meets all of them alike:
+// ms per step is the median of its rounds, speedup the median over rounds of time(1) / time(n)
+// in the same round, efficiency = speedup / n. The machine's core count bounds what more threads
+// can give; the determinism of the result at any count is tested elsewhere.
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <thread>
 
 #include "experiments.hpp"
@@ -20,20 +23,40 @@ double WallSeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-/// Median wall seconds per step.
+/// Wall seconds per step over a fifth of a second of steps (at least one).
 double SecondsPerStep(sim::Simulation<float>* simulation) {
-  std::vector<double> runs;
-  for (int run = 0; run < 5; ++run) {
-    int steps = 0;
-    const double start = WallSeconds();
-    while (WallSeconds() - start < 0.2 || steps == 0) {
-      simulation->Step();
-      ++steps;
-    }
-    runs.push_back((WallSeconds() - start) / steps);
+  int steps = 0;
+  const double start = WallSeconds();
+  while (WallSeconds() - start < 0.2 || steps == 0) {
+    simulation->Step();
+    ++steps;
   }
-  std::nth_element(runs.begin(), runs.begin() + 2, runs.end());
-  return runs[2];
+  return (WallSeconds() - start) / steps;
+}
+
+double Median(std::vector<double> values) {
+  const auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+constexpr int kRounds = 5;
+constexpr int kMaxThreads = 4;
+
+/// One grid and integrator at 1 to kMaxThreads threads, in turns: seconds[threads - 1][round].
+std::vector<std::vector<double>> TimeInTurns(const sim::SimParams& base, const Scene& scene) {
+  std::vector<std::unique_ptr<sim::Simulation<float>>> simulations;
+  for (int threads = 1; threads <= kMaxThreads; ++threads) {
+    sim::SimParams params = base;
+    params.threads = threads;
+    simulations.push_back(std::make_unique<sim::Simulation<float>>(params, scene.wind, scene.seed));
+    for (int i = 0; i < 3; ++i) simulations.back()->Step();
+  }
+  std::vector<std::vector<double>> seconds(kMaxThreads);
+  for (int round = 0; round < kRounds; ++round) {
+    for (int t = 0; t < kMaxThreads; ++t) seconds[t].push_back(SecondsPerStep(simulations[t].get()));
+  }
+  return seconds;
 }
 
 }  // namespace
@@ -45,21 +68,26 @@ void Threads(const std::string& csv) {
   // One block of rows per integrator and thread count (the charts join consecutive rows).
   for (const sim::IntegratorKind kind :
        {sim::IntegratorKind::kSymplecticEuler, sim::IntegratorKind::kImplicitEuler}) {
-    std::vector<double> one_thread;
-    for (const int threads : {1, 2, 3, 4}) {
-      for (int scale = 1, grid = 0; scale <= 16; scale *= 2, ++grid) {
-        sim::SimParams params = scene.sim;
-        params.cols = 32 * scale;
-        params.rows = 24 * scale;
-        params.integrator = kind;
-        params.threads = threads;
-        sim::Simulation<float> simulation(params, scene.wind, scene.seed);
-        for (int i = 0; i < 3; ++i) simulation.Step();
-        const double seconds = SecondsPerStep(&simulation);
-        if (threads == 1) one_thread.push_back(seconds);
-        const double speedup = one_thread[grid] / seconds;
-        table.Add({sim::IntegratorName(kind), std::to_string(params.cols), std::to_string(params.rows),
-                   std::to_string(threads), Table::Number(1e3 * seconds), Table::Number(speedup),
+    std::vector<sim::SimParams> grids;
+    std::vector<std::vector<std::vector<double>>> timings;  // [grid][threads - 1][round]
+    for (int scale = 1; scale <= 16; scale *= 2) {
+      sim::SimParams params = scene.sim;
+      params.cols = 32 * scale;
+      params.rows = 24 * scale;
+      params.integrator = kind;
+      grids.push_back(params);
+      timings.push_back(TimeInTurns(params, scene));
+    }
+    for (int threads = 1; threads <= kMaxThreads; ++threads) {
+      for (size_t grid = 0; grid < grids.size(); ++grid) {
+        const std::vector<std::vector<double>>& seconds = timings[grid];
+        std::vector<double> speedups;
+        for (int round = 0; round < kRounds; ++round)
+          speedups.push_back(seconds[0][round] / seconds[threads - 1][round]);
+        const double speedup = Median(speedups);
+        table.Add({sim::IntegratorName(kind), std::to_string(grids[grid].cols),
+                   std::to_string(grids[grid].rows), std::to_string(threads),
+                   Table::Number(1e3 * Median(seconds[threads - 1])), Table::Number(speedup),
                    Table::Number(speedup / threads)});
       }
     }
