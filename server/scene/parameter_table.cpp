@@ -161,7 +161,7 @@ ParameterTable::ParameterTable() {
               "iterations per step of the xpbd and projective integrators"),
       Real("solver_tolerance", "", 1e-8, 0.5, &SimParams::solver_tolerance,
            "implicit_euler: conjugate gradient stops at this residual relative to the right-hand side"),
-      Integer("threads", 1, 64, &SimParams::threads, "worker threads for forces and integration"),
+      Integer("threads", 1, 64, &SimParams::threads, "worker threads for the step and the frames; a second pays from about 64 x 48 nodes up"),
       Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, &Scene::service, &ServiceSettings::state_rate,
            "STATE messages per second of simulated time"),
       Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120, &Scene::service, &ServiceSettings::frame_rate,
