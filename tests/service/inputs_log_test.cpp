@@ -4,7 +4,6 @@
 #include "inputs_log.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include <string>
 
 #include "command_client.hpp"
+#include "log_fixtures.hpp"
 #include "messages/message_fixtures.hpp"
 #include "replay.hpp"
 #include "server.hpp"
@@ -20,17 +20,8 @@
 namespace flagsim {
 namespace {
 
-std::string TempPath(const std::string& name) {
-  return std::string(::testing::TempDir()) + "/" + std::to_string(getpid()) + "_" + name;
-}
-
-/// Velocity Verlet carries forces between substeps: a clean point missed in the replay shows.
-Scene Small() {
-  Scene scene;
-  scene.sim.cols = 10;
-  scene.sim.rows = 8;
-  scene.sim.threads = 1;
-  scene.sim.integrator = sim::IntegratorKind::kVelocityVerlet;
+Scene SmallWithoutFrames() {
+  Scene scene = testing::SmallVerletScene();
   scene.service.frame_rate = 0;
   return scene;
 }
@@ -44,14 +35,14 @@ class CountingBus final : public Publisher {
 };
 
 TEST(InputsLog, AServersOwnRecordReplaysBitForBit) {
-  const std::string path = TempPath("inputs.lcmlog");
+  const std::string path = testing::TempPath("inputs.lcmlog");
   const Channels channels;
   Bus bus("memq://");
   ServerOptions options;
   options.fast = true;
   options.duration = 11;  // 5500 steps: past the periodic checkpoints at 2500 and 5000
   options.inputs_log = path;
-  Server server(bus, channels, Small(), options);
+  Server server(bus, channels, SmallWithoutFrames(), options);
   CommandClient client(bus, channels, 5.0);
   client.WhileWaiting([&server] { server.Tick(MonotonicSeconds()); });
   wind_command_t wind = testing::SomeWindCommand();

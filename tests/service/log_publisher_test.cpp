@@ -1,7 +1,6 @@
 #include "log_publisher.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -9,15 +8,15 @@
 #include <vector>
 
 #include "event_log_reader.hpp"
+#include "log_fixtures.hpp"
 
 namespace flagsim {
 namespace {
 
+using testing::TempPath;
+
 constexpr int64_t kStart = 1700000000000000;  // us since the Unix epoch
 
-std::string TempPath(const std::string& name) {
-  return std::string(::testing::TempDir()) + "/" + std::to_string(getpid()) + "_" + name;
-}
 
 std::vector<LogEvent> ReadLog(const std::string& path) {
   EventLogReader reader(path);

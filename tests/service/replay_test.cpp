@@ -5,7 +5,6 @@
 #include "replay.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -16,28 +15,16 @@
 #include "channels.hpp"
 #include "command_apply.hpp"
 #include "journal.hpp"
+#include "log_fixtures.hpp"
 #include "log_publisher.hpp"
 #include "message_builders.hpp"
 
 namespace flagsim {
 namespace {
 
+using testing::TempPath;
+
 constexpr int64_t kStart = 1700000000000000;  // us since the Unix epoch
-
-std::string TempPath(const std::string& name) {
-  return std::string(::testing::TempDir()) + "/" + std::to_string(getpid()) + "_" + name;
-}
-
-/// Velocity Verlet carries forces from one substep to the next, so a clean point the replay
-/// failed to make where the session made one would show in the hashes.
-Scene Small() {
-  Scene scene;
-  scene.sim.cols = 10;
-  scene.sim.rows = 8;
-  scene.sim.threads = 1;  // recorded on one; replayed on one and two
-  scene.sim.integrator = sim::IntegratorKind::kVelocityVerlet;
-  return scene;
-}
 
 template <class Message>
 std::vector<uint8_t> Bytes(Message message) {
@@ -58,7 +45,7 @@ struct Recording {
 void Record(const std::string& path, const Recording& recording) {
   const Channels channels;
   LogPublisher log(path, kStart);
-  Session session(Small());
+  Session session(testing::SmallVerletScene());
   Journal journal(&log, channels);
   wind_command_t wind{};
   wind.velocity[0] = 9;
