@@ -1,9 +1,9 @@
 // flagd: the flag simulation server. Steps the flag in real time (or as fast as it can), draws
 // and streams its frames as tiles, publishes STATE, PARAMS and STATUS, and takes WIND, PARAM,
 // CAMERA, KEYFRAME and REFRESH commands over LCM, journaling what replay needs (APPLIED,
-// CHECKPOINT), and with --record-inputs into a log of its own too. `flagd render` runs a scene offline instead, into an LCM log and PNG frames
-// (render_command.hpp); `flagd replay` steps a recorded session again and checks it
-// (replay_command.hpp).
+// CHECKPOINT), with --record-inputs into a log of its own too. `flagd render` runs a scene
+// offline instead, into an LCM log and PNG frames (render_command.hpp); `flagd replay` steps a
+// recorded session again and checks it (replay_command.hpp).
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 

@@ -20,8 +20,9 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
       channels_(channels),
       options_(options),
       session_(scene),
-      inputs_(options.inputs_log.empty() ? nullptr
-                                         : std::make_unique<InputsLog>(bus, options.inputs_log, UnixMicros())),
+      inputs_(options.inputs_log.empty()
+                  ? nullptr
+                  : std::make_unique<InputsLog>(bus, options.inputs_log, UnixMicros())),
       journal_(inputs_ ? static_cast<Publisher*>(inputs_.get()) : &bus, channels),
       intake_(bus, channels, session_, stats_),
       paced_(bus) {

@@ -31,8 +31,8 @@
 namespace flagsim {
 
 struct ServerOptions {
-  bool fast = false;    ///< step as fast as possible instead of in real time
-  double duration = 0;  ///< s of simulated time to run, 0 = until stopped
+  bool fast = false;       ///< step as fast as possible instead of in real time
+  double duration = 0;     ///< s of simulated time to run, 0 = until stopped
   std::string inputs_log;  ///< if set, the journal also goes into this LCM log (inputs_log.hpp)
 };
 

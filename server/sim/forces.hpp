@@ -60,8 +60,8 @@ class ForceEvaluator {
                                           ///< force on that node (the far node gets minus it)
   NodeForces<Real> upper_, lower_;        ///< per cell: a third of each triangle's wind force
   std::vector<Real> zero_;                ///< zeros, for families a model lacks
-  std::vector<double> column_s_;   ///< m, each cell column's middle down the flag
-  std::vector<Vec3> column_wind_;  ///< m/s, the wind there
+  std::vector<double> column_s_;          ///< m, each cell column's middle down the flag
+  std::vector<Vec3> column_wind_;         ///< m/s, the wind there
   std::vector<Real> column_wind_x_, column_wind_y_, column_wind_z_;  ///< m/s, wind per cell column
   std::vector<Real> wind_x_, wind_y_, wind_z_;                       ///< m/s, wind per cell, on the node grid
 };

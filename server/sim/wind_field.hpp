@@ -78,7 +78,7 @@ class NoiseCursor {
  private:
   uint64_t seed_;
   bool valid_ = false;
-  int64_t cell_ = 0;   ///< the lattice cell [cell_, cell_ + 1] that a_ and b_ belong to
+  int64_t cell_ = 0;  ///< the lattice cell [cell_, cell_ + 1] that a_ and b_ belong to
   double a_ = 0, b_ = 0;
 };
 

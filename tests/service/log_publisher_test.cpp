@@ -17,7 +17,6 @@ using testing::TempPath;
 
 constexpr int64_t kStart = 1700000000000000;  // us since the Unix epoch
 
-
 std::vector<LogEvent> ReadLog(const std::string& path) {
   EventLogReader reader(path);
   std::vector<LogEvent> events;

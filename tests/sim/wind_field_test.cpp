@@ -100,7 +100,8 @@ TEST(WindField, AlongTheFlagIsAtAtEachPointBitForBit) {
   for (const double t : {0.0, 1.2, 9.7}) {
     std::vector<Vec3> along(s.size());
     wind.Along(t, s.data(), int(s.size()), along.data());
-    for (size_t c = 0; c < s.size(); ++c) EXPECT_EQ(along[c], wind.At(t, s[c])) << "t = " << t << ", c = " << c;
+    for (size_t c = 0; c < s.size(); ++c)
+      EXPECT_EQ(along[c], wind.At(t, s[c])) << "t = " << t << ", c = " << c;
   }
 }
 
