@@ -3,6 +3,17 @@
 # `finish`, which exits 1 if any check failed.
 failures=0
 passes=0
+# pass DESCRIPTION; fail DESCRIPTION [FILE]: count a check, FILE (indented) saying why it failed.
+pass() {
+  passes=$((passes + 1))
+  echo "ok    $1"
+}
+fail() {
+  failures=$((failures + 1))
+  echo "FAIL  $1"
+  if [[ -f ${2:-} ]]; then sed 's/^/      /' "$2"; fi
+  return 0
+}
 # expect CODE DESCRIPTION COMMAND...: runs COMMAND, checks its exit code, keeps its output.
 expect() {
   local code=$1 what=$2
@@ -10,25 +21,13 @@ expect() {
   local got=0 start=$SECONDS
   "$@" >"$work/out" 2>&1 || got=$?
   local took=$((SECONDS - start))
-  if [[ $got == "$code" ]]; then
-    passes=$((passes + 1))
-    echo "ok    $what (exit $got, ${took} s)"
-  else
-    failures=$((failures + 1))
-    echo "FAIL  $what: exit $got after ${took} s, expected $code"
-    sed 's/^/      /' "$work/out"
-  fi
+  if [[ $got == "$code" ]]; then pass "$what (exit $got, ${took} s)"
+  else fail "$what: exit $got after ${took} s, expected $code" "$work/out"; fi
 }
 # found GREP_MODE PATTERN DESCRIPTION: the last command's output has PATTERN.
 found() {
-  if grep -q "$1" -- "$2" "$work/out"; then
-    passes=$((passes + 1))
-    echo "ok    $3"
-  else
-    failures=$((failures + 1))
-    echo "FAIL  $3: no '$2' in:"
-    sed 's/^/      /' "$work/out"
-  fi
+  if grep -q "$1" -- "$2" "$work/out"; then pass "$3"
+  else fail "$3: no '$2' in:" "$work/out"; fi
 }
 contains() { found -F "$@"; }  # fixed text
 matches() { found -E "$@"; }   # extended regular expression

@@ -10,27 +10,7 @@ flagctl=$build/client/flagctl
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-failures=0
-passes=0
-pass() { passes=$((passes + 1)); echo "ok    $1"; }
-fail() { failures=$((failures + 1)); echo "FAIL  $1"; }
-# expect CODE DESCRIPTION COMMAND...: runs COMMAND, checks its exit code, keeps its output.
-expect() {
-  local code=$1 what=$2
-  shift 2
-  local got=0
-  "$@" >"$work/out" 2>&1 || got=$?
-  if [[ $got == "$code" ]]; then pass "$what (exit $got)"; else
-    fail "$what: exit $got, expected $code"
-    sed 's/^/      /' "$work/out"
-  fi
-}
-contains() {  # contains TEXT DESCRIPTION: the last command's output has TEXT
-  if grep -qF -- "$1" "$work/out"; then pass "$2"; else
-    fail "$2: no '$1' in:"
-    sed 's/^/      /' "$work/out"
-  fi
-}
+source "$(dirname "$0")/checks.sh"
 equal() {  # equal GOT WANTED DESCRIPTION
   if [[ $1 == "$2" ]]; then pass "$3 ($1)"; else fail "$3: $1, expected $2"; fi
 }
@@ -119,5 +99,4 @@ mkdir "$work/empty-path"
 expect 1 "no ffmpeg on PATH" env PATH="$work/empty-path" "$flagctl" export "$log" -o "$work/none.mp4"
 contains "ffmpeg is not installed" "  says so"
 
-echo "$passes passed, $failures failed"
-((failures == 0))
+finish

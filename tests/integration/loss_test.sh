@@ -10,22 +10,14 @@ work=$(mktemp -d)
 server=$!
 trap 'kill $server 2>/dev/null || true; rm -rf "$work"' EXIT
 
-failures=0
-passes=0
-check() {  # check DESCRIPTION COMMAND...: exit 0 expected
-  local what=$1
-  shift
-  if "$@" >"$work/out" 2>&1; then passes=$((passes + 1)); echo "ok    $what"
-  else failures=$((failures + 1)); echo "FAIL  $what"; sed 's/^/      /' "$work/out"; fi
-}
+source "$(dirname "$0")/checks.sh"
 sleep 1
 for i in 1 2 3; do
-  check "command $i answered despite loss" "$build/client/flagctl" --timeout 5 wind $((4 + i)) 0 1
+  expect 0 "command $i answered despite loss" "$build/client/flagctl" --timeout 5 wind $((4 + i)) 0 1
 done
 for i in 1 2 3; do
   start=$(date +%s%N)
-  check "snapshot $i complete within 15 s despite loss" "$build/client/flagctl" --timeout 15 snapshot -o "$work/frame.png"
+  expect 0 "snapshot $i complete within 15 s despite loss" "$build/client/flagctl" --timeout 15 snapshot -o "$work/frame.png"
   echo "      took $(( ($(date +%s%N) - start) / 1000000 )) ms"
 done
-echo "$passes passed, $failures failed"
-((failures == 0))
+finish

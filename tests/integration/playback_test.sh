@@ -18,10 +18,7 @@ cleanup() {
 }
 trap cleanup EXIT
 
-failures=0
-passes=0
-pass() { passes=$((passes + 1)); echo "ok    $1"; }
-fail() { failures=$((failures + 1)); echo "FAIL  $1"; [[ -f ${2:-} ]] && sed 's/^/      /' "$2"; return 0; }
+source "$(dirname "$0")/checks.sh"
 
 cat >"$work/small.toml" <<'TOML'
 name = "small"
@@ -68,5 +65,4 @@ if [[ -f $work/snapshot.png ]]; then
   if [[ -n $match ]]; then pass "  equal to $match as flagd drew it"; else fail "  equal to none of the frames drawn"; fi
 fi
 
-echo "$passes passed, $failures failed"
-((failures == 0))
+finish
