@@ -33,7 +33,7 @@ tile_t EncodeTile(const std::vector<uint8_t>& pixels, ZSTD_CCtx* context) {
 
 /// XXH3-64 of the tile's rows copied out back to back into `scratch`: one pass of the one-shot
 /// hash over 12 KB instead of the streaming hash fed 192-byte rows (with the hash inlined, a
-/// 1280x720 frame's encoding went from 1.8 to 0.74 ms on one thread).
+/// frame's encoding takes about half the time: bench/tile_bench.cpp, docs/benchmarks.md).
 uint64_t TileHash(const render::Framebuffer& image, const TileBox& box, std::vector<uint8_t>* scratch) {
   const size_t row_bytes = size_t(box.width) * 3;
   scratch->resize(row_bytes * box.height);
