@@ -156,10 +156,11 @@ int Watch(const Globals& globals, double duration) {
     link.bus.Handle(50);
     if (MonotonicSeconds() - last_line < 1.0 || !latest) continue;
     const double elapsed = MonotonicSeconds() - last_line;
-    std::printf("t %9.3f s  step %8lld  STATE %5.1f Hz %6.1f KB  hash %016llx  tip %s", latest->sim_time,
-                static_cast<long long>(latest->step), states / elapsed,
+    std::printf("t %9.3f s  step %8lld  STATE %5.1f Hz %6.1f KB  hash %016llx  tip %s  kinetic %.4g J",
+                latest->sim_time, static_cast<long long>(latest->step), states / elapsed,
                 states > 0 ? state_bytes / 1024.0 / states : 0.0,
-                static_cast<unsigned long long>(latest->state_hash), TipText(*latest).c_str());
+                static_cast<unsigned long long>(latest->state_hash), TipText(*latest).c_str(),
+                latest->kinetic_energy);
     if (status) std::printf("  rtf %.2f  step %.0f us", status->real_time_factor, status->step_time_us);
     if (frames > 0) {
       std::printf("  FRAME %4.1f Hz %5.1f tiles/frame %7.1f KB/s", frames / elapsed, double(tiles) / frames,

@@ -10,6 +10,7 @@
 #include "channels.hpp"
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
+#include "gateway/serve.hpp"
 
 namespace flagsim {
 
@@ -50,5 +51,8 @@ struct ExportRequest {
 };
 /// The frames in a log, assembled and hash-checked, into PNGs or a video (flagctl_export.cpp).
 int Export(const Globals& globals, const ExportRequest& request);
+
+/// The live view's gateway, until interrupted (flagctl_serve.cpp).
+int Serve(const Globals& globals, const gateway::ServeOptions& options);
 
 }  // namespace flagsim

@@ -1,9 +1,8 @@
 // flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, keyframe, refresh),
-// reads its streams (params, status, watch, snapshot, keyframe list), records sessions (record)
-// and turns logs into pictures (export). This file is the command line; flagctl_commands.cpp,
-// flagctl_keyframe.cpp and flagctl_export.cpp do the work.
-// Exit codes: 0 ok, 1 failed, 2 usage, 3 rejected by the server (its reason printed), 4 no
-// answer, 5 nothing to export.
+// reads its streams (params, status, watch, snapshot, keyframe list), records sessions (record),
+// turns logs into pictures (export) and serves the live view to browsers (serve). This file is the command
+// line; flagctl_commands.cpp, flagctl_keyframe.cpp and flagctl_export.cpp do the work. Exit codes: 0 ok, 1
+// failed, 2 usage, 3 rejected by the server (its reason printed), 4 no answer, 5 nothing to export.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <csignal>
@@ -102,7 +101,8 @@ int main(int argc, char** argv) {
 
   camera_command_t camera_command{};
   camera_command.factor = 1;
-  CLI::App* camera = app.add_subcommand("camera", "move the camera (angles in degrees, distances in m)");
+  CLI::App* camera = app.add_subcommand(
+      "camera", "move the camera (angles in degrees, distances in m); the eye stays above the ground");
   camera->require_subcommand(1);
   double degrees = 0, degrees2 = 0;
   std::vector<double> point;
@@ -112,17 +112,25 @@ int main(int argc, char** argv) {
     return move;
   };
   add_move("rotate-x", "turn the scene about the x axis through the target", camera_command_t::ROTATE_X)
-      ->add_option("degrees", degrees)
+      ->add_option("degrees", degrees, "the angle in degrees, right-handed about +x")
       ->required();
   add_move("rotate-y", "turn the scene about the y (up) axis through the target", camera_command_t::ROTATE_Y)
-      ->add_option("degrees", degrees)
+      ->add_option("degrees", degrees, "the angle in degrees, right-handed about +y")
       ->required();
   add_move("rotate-z", "turn the scene about the z axis through the target", camera_command_t::ROTATE_Z)
-      ->add_option("degrees", degrees)
+      ->add_option("degrees", degrees, "the angle in degrees, right-handed about +z")
       ->required();
-  CLI::App* orbit = add_move("orbit", "move the eye around the target", camera_command_t::ORBIT);
-  orbit->add_option("azimuth", degrees, "degrees")->required();
-  orbit->add_option("elevation", degrees2, "degrees")->required();
+  CLI::App* orbit =
+      add_move("orbit", "move the eye around the target; it stops at the ground rather than going under",
+               camera_command_t::ORBIT);
+  orbit->add_option("azimuth", degrees, "degrees around the vertical axis through the target")->required();
+  orbit->add_option("elevation", degrees2, "degrees up (negative: down); the eye stops at the ground")
+      ->required();
+  add_move("zoom", "move the eye along the line to the target (kept 0.1 .. 200 m from it)",
+           camera_command_t::ZOOM)
+      ->add_option("factor", camera_command.factor,
+                   "the distance is divided by it: 2 twice as close, 0.5 twice as far")
+      ->required();
   add_move("translate", "move eye and target by X Y Z", camera_command_t::TRANSLATE)
       ->add_option("offset", point, "X Y Z in m")
       ->expected(3)
@@ -131,10 +139,24 @@ int main(int argc, char** argv) {
       ->add_option("point", point, "X Y Z in m")
       ->expected(3)
       ->required();
-  CLI::App* scale =
-      add_move("scale", "scale the scene about a point (default: the origin)", camera_command_t::SCALE);
-  scale->add_option("factor", camera_command.factor, "2 doubles the apparent size")->required();
-  scale->add_option("--about", point, "X Y Z in m")->expected(3);
+  add_move("eye", "put the eye at X Y Z, looking at the same target", camera_command_t::SET_EYE)
+      ->add_option("point", point, "X Y Z in m (y up, at least 0.05 above the ground)")
+      ->expected(3)
+      ->required();
+  add_move("fov", "set the vertical field of view", camera_command_t::SET_FOV)
+      ->add_option("degrees", degrees, "10 .. 120 degrees")
+      ->required();
+  CLI::App* scale = camera->add_subcommand(
+      "scale",
+      "zoom toward the target (as zoom); with --about, scale the scene about that point instead (the seed's "
+      "transform)");
+  scale->add_option("factor", camera_command.factor, "2: twice as close, or twice the size about the point")
+      ->required();
+  CLI::Option* about =
+      scale->add_option("--about", point, "X Y Z in m: the point to scale the scene about")->expected(3);
+  scale->callback([&camera_command, about] {
+    camera_command.operation = about->count() > 0 ? camera_command_t::SCALE : camera_command_t::ZOOM;
+  });
   CLI::App* size = add_move("size", "set the image size", camera_command_t::SET_IMAGE_SIZE);
   size->add_option("width", camera_command.width, "px")->required();
   size->add_option("height", camera_command.height, "px")->required();
@@ -142,6 +164,27 @@ int main(int argc, char** argv) {
 
   KeyframeArguments keyframe;
   AddKeyframeCommand(app, &keyframe);
+
+  gateway::ServeOptions serve_options;
+  CLI::App* serve = app.add_subcommand(
+      "serve",
+      "serve the live view to browsers and Foxglove (the Foxglove WebSocket protocol) until interrupted");
+  serve->add_option("--listen", serve_options.listen, "HOST:PORT to listen on (port 0: any free one)")
+      ->capture_default_str();
+  serve->add_option(
+      "--token", serve_options.token,
+      "required on every request (?token=, a bearer header, or the page's cookie); generated when "
+      "listening beyond loopback without one");
+  serve->add_option(
+      "--allow-origin", serve_options.allow_origins,
+      "a browser origin allowed besides the gateway's own, e.g. https://app.foxglove.dev; * for any");
+  serve->add_option("--record-dir", serve_options.record_directory, "where the page's recordings go")
+      ->capture_default_str();
+  serve->footer(
+      "Commands from browsers go out as WIND, PARAM, CAMERA, KEYFRAME and REFRESH and are answered with the\n"
+      "server's ACK; --timeout is how long the gateway waits for one. The protocol, channels and services "
+      "are\n"
+      "in docs/live-view.md.");
 
   try {
     app.parse(argc, argv);
@@ -168,6 +211,7 @@ int main(int argc, char** argv) {
     if (command == "camera") return Camera(globals, camera_command);
     if (command == "export") return Export(globals, export_request);
     if (command == "keyframe") return Keyframe(globals, keyframe);
+    if (command == "serve") return Serve(globals, serve_options);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());
     return 1;

@@ -8,16 +8,16 @@
 namespace flagsim {
 
 LogRecorder::LogRecorder(Bus& bus, const std::string& channel_regex, const std::string& path)
-    : log_(std::make_unique<lcm::LogFile>(path, "w")) {
+    : bus_(bus), log_(std::make_unique<lcm::LogFile>(path, "w")) {
   if (!log_->good()) throw std::runtime_error("cannot write the log file " + path);
   // A deep queue: a recorder must not drop what arrives in bursts between two Handle() calls.
-  bus.Subscribe(
+  subscription_ = bus.Subscribe(
       channel_regex,
       [this](const std::string& channel, const uint8_t* data, size_t size) { Write(channel, data, size); },
       10000);
 }
 
-LogRecorder::~LogRecorder() = default;
+LogRecorder::~LogRecorder() { bus_.Unsubscribe(subscription_); }
 
 void LogRecorder::Write(const std::string& channel, const uint8_t* data, size_t size) {
   lcm::LogEvent event;

@@ -13,7 +13,9 @@ void TileAssembler::Resize(int width, int height, int tile_size) {
   tile_size_ = tile_size;
   image_.assign(size_t(width) * height * 3, 0);
   const int tiles = ((width + tile_size - 1) / tile_size) * ((height + tile_size - 1) / tile_size);
-  tile_frame_.assign(tiles, -1);
+  tile_t none{};
+  none.frame_id = -1;
+  placed_.assign(tiles, none);
 }
 
 std::string TileAssembler::AddTile(const tile_t& tile) {
@@ -36,7 +38,7 @@ std::string TileAssembler::Place(const tile_t& tile) {
   }
   const int tiles_x = (width_ + tile_size_ - 1) / tile_size_;
   const int index = (tile.y / tile_size_) * tiles_x + tile.x / tile_size_;
-  if (tile.frame_id < tile_frame_[index]) return "";  // older than what we have: skip
+  if (tile.frame_id < placed_[index].frame_id) return "";  // older than what we have: skip
 
   const size_t size = size_t(tile.width) * tile.height * 3;
   std::vector<uint8_t> pixels(size);
@@ -55,7 +57,7 @@ std::string TileAssembler::Place(const tile_t& tile) {
     std::copy_n(&pixels[size_t(row) * tile.width * 3], size_t(tile.width) * 3,
                 &image_[(size_t(tile.y + row) * width_ + tile.x) * 3]);
   }
-  tile_frame_[index] = tile.frame_id;
+  placed_[index] = tile;
   return "";
 }
 

@@ -35,6 +35,9 @@ class TileAssembler {
   int height() const { return height_; }
   const std::vector<uint8_t>& image() const { return image_; }  ///< RGB8, rows top to bottom
   int64_t last_complete_frame() const { return last_complete_frame_; }
+  /// Per tile index (row-major): the tile whose pixels are in the image, as it came
+  /// (compressed); frame_id -1 where none came yet. A complete frame's tiles, resent as they are.
+  const std::vector<tile_t>& placed_tiles() const { return placed_; }
 
  private:
   void Resize(int width, int height, int tile_size);
@@ -42,8 +45,8 @@ class TileAssembler {
 
   int width_ = 0, height_ = 0, tile_size_ = 0;
   std::vector<uint8_t> image_;
-  std::vector<int64_t> tile_frame_;  ///< per tile: the frame its pixels came from, -1 if none
-  std::vector<tile_t> latest_;       ///< the tiles of the newest frame seen
+  std::vector<tile_t> placed_;  ///< per tile: the one whose pixels the image holds
+  std::vector<tile_t> latest_;  ///< the tiles of the newest frame seen
   int64_t latest_frame_ = -1;
   int64_t last_complete_frame_ = -1;
 };

@@ -58,6 +58,8 @@ void Bus::Unsubscribe(size_t token) {
 
 bool Bus::Handle(int timeout_ms) { return lcm_->handleTimeout(timeout_ms) > 0; }
 
+int Bus::fileno() const { return lcm_->getFileno(); }
+
 void Bus::HandleAll() {
   while (Handle(0)) {
   }

@@ -59,6 +59,9 @@ class Bus : public Publisher {
   bool Handle(int timeout_ms);
   /// Dispatches every message already waiting, without blocking.
   void HandleAll();
+  /// A file descriptor that becomes readable when a message waits: for an event loop that
+  /// watches it and calls HandleAll() (the gateway's).
+  int fileno() const;
 
   uint64_t bytes_published() const { return bytes_published_.load(); }
   const std::string& url() const { return url_; }

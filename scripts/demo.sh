@@ -45,3 +45,5 @@ elif [[ $code != 0 ]]; then
 fi
 echo "== left in out/: $(ls out | tr '\n' ' ')"
 echo "   play the log back with: lcm-logplayer out/session.lcmlog   (and flagctl watch in another terminal)"
+echo "   watch and steer the flag live in a browser: scripts/live.sh, then open the URL it prints"
+echo "   (http://127.0.0.1:8080/; Foxglove and Lichtblick connect to ws://127.0.0.1:8080/)"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what flagsim needs to build, test and run, from Debian's packages (bookworm).
 # Idempotent and non-interactive: installs only what is missing.
-#   scripts/install-deps.sh          build, test and run
+#   scripts/install-deps.sh          build and run
+#   scripts/install-deps.sh --browser  also Chromium, for the live view's browser tests
 #   scripts/install-deps.sh --java   also a JDK, for the lcm-spy types jar
 #   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL (the llvmpipe comparison), Bullet (the soft body
 #                                    comparison) and gnuplot (charts)
@@ -16,17 +17,23 @@ packages=(
   libspdlog-dev                                  # server logging
   libzstd-dev libxxhash-dev                      # tile compression, image and state hashes
   libpng-dev                                     # snapshots and exported frames
+  libboost-dev nlohmann-json3-dev libjpeg-dev    # the live view's gateway: HTTP/WebSocket, JSON, JPEG
   ffmpeg                                         # flagctl export's MP4 and GIF encoder; ffprobe for its test
   libgtest-dev libbenchmark-dev                  # tests and benchmarks
   iproute2 nftables util-linux                   # private network namespaces for the udpm tests
 )
 for option in "$@"; do
   case $option in
+    --browser) packages+=(chromium) ;;
     --java) packages+=(default-jdk-headless) ;;
     --bench) packages+=(libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox libbullet-dev) ;;
-    *) echo "install-deps: unknown option $option (known: --java, --bench)" >&2; exit 2 ;;
+    *) echo "install-deps: unknown option $option (known: --browser, --java, --bench)" >&2; exit 2 ;;
   esac
 done
+# Node.js and npm build the live view's page (and run its tests): the machine's own if it has
+# them, else Debian's.
+command -v node >/dev/null || packages+=(nodejs)
+command -v npm >/dev/null || packages+=(npm)
 
 missing=()
 for package in "${packages[@]}"; do

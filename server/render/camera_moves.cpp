@@ -1,10 +1,13 @@
 #include "camera_moves.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 namespace flagsim::render {
 namespace {
+
+constexpr double kGroundSlack = 1e-9;  ///< m below the floor a move may end by rounding
 
 std::string Number(double value) {
   char text[32];
@@ -29,6 +32,33 @@ std::string CheckVector(const Eigen::Vector3d& vector) {
   return "";
 }
 
+/// A field of view given in rad, reported in degrees (flagctl takes degrees).
+std::string CheckFov(double radians) {
+  // Compared in rad, as flagctl converts (degrees * pi / 180), so that the limits themselves pass.
+  if (radians >= CameraMove::kMinFov * M_PI / 180 && radians <= CameraMove::kMaxFov * M_PI / 180) return "";
+  const double degrees = radians * 180 / M_PI;
+  return "angle: " + Number(degrees) + " degrees is " +
+         (std::isfinite(degrees) ? "out of range" : "not finite") + "; allowed " +
+         Number(CameraMove::kMinFov) + " .. " + Number(CameraMove::kMaxFov) +
+         " degrees of vertical field of view";
+}
+
+/// The field whose value moves the eye in `operation`, for a reason that names it.
+const char* FieldMovingTheEye(int operation) {
+  switch (operation) {
+    case CameraMove::kRotateX:
+    case CameraMove::kRotateY:
+    case CameraMove::kRotateZ:
+    case CameraMove::kOrbit:
+      return "angle";
+    case CameraMove::kScale:
+    case CameraMove::kZoom:
+      return "factor";
+    default:
+      return "vector";
+  }
+}
+
 /// Checks the move's fields for its operation; "" if it may be applied.
 std::string Check(const CameraMove& m) {
   using M = CameraMove;
@@ -43,7 +73,12 @@ std::string Check(const CameraMove& m) {
     }
     case M::kTranslate:
     case M::kLookAt:
+    case M::kSetEye:
       return CheckVector(m.vector);
+    case M::kZoom:
+      return CheckRange("factor", m.factor, M::kMinFactor, M::kMaxFactor, "");
+    case M::kSetFov:
+      return CheckFov(m.angle);
     case M::kScale: {
       const std::string problem = CheckRange("factor", m.factor, M::kMinFactor, M::kMaxFactor, "");
       return problem.empty() ? CheckVector(m.vector) : problem;
@@ -54,8 +89,8 @@ std::string Check(const CameraMove& m) {
     }
     default:
       return "operation: " + std::to_string(m.operation) +
-             " is not one; allowed 1 .. 9 (ROTATE_X, ROTATE_Y, ROTATE_Z, TRANSLATE, SCALE, ORBIT, LOOK_AT, "
-             "SET_IMAGE_SIZE, RESET)";
+             " is not one; allowed 1 .. 12 (ROTATE_X, ROTATE_Y, ROTATE_Z, TRANSLATE, SCALE, ORBIT, LOOK_AT, "
+             "SET_IMAGE_SIZE, RESET, ZOOM, SET_EYE, SET_FOV)";
   }
 }
 
@@ -91,13 +126,33 @@ std::string ApplyCameraMove(const CameraMove& move, Camera* camera) {
       moved.width = move.width;
       moved.height = move.height;
       break;
+    case CameraMove::kZoom:
+      moved.Zoom(move.factor);
+      break;
+    case CameraMove::kSetEye:
+      moved.eye = move.vector;
+      break;
+    case CameraMove::kSetFov:
+      moved.fov_y = move.angle;
+      break;
     default:
       return "operation: RESET is the session's to apply";
   }
   // The view must stay defined: an eye away from its target, not looking straight up or down.
   const Eigen::Vector3d forward = moved.target - moved.eye;
-  if (forward.norm() < 1e-3 || forward.normalized().cross(moved.up).norm() < 1e-6) {
+  if (!(forward.norm() >= 1e-3) || !(forward.normalized().cross(moved.up).norm() >= 1e-6)) {
     return "vector: the camera would look at its own position or straight along its up axis";
+  }
+  // The eye stays above the ground, or no lower than it was if it was below already. Orbit and
+  // zoom stop there themselves; kGroundSlack forgives their rounding.
+  const double height = moved.EyeHeight(), floor = std::min(Camera::kMinEyeHeight, camera->EyeHeight());
+  if (!(height >= floor - kGroundSlack)) {
+    const std::string allowed = floor < Camera::kMinEyeHeight
+                                    ? Number(floor) + " m (no lower than the eye is now)"
+                                    : Number(Camera::kMinEyeHeight) + " m above the ground";
+    return std::string(FieldMovingTheEye(move.operation)) + ": the eye would be at y = " + Number(height) +
+           " m in the world, " + (height < 0 ? "under" : "too near") +
+           " the ground (y = 0); allowed at least " + allowed + "; the camera is unchanged";
   }
   *camera = moved;
   return "";

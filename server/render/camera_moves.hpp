@@ -18,23 +18,29 @@ struct CameraMove {
     kOrbit,
     kLookAt,
     kSetImageSize,
-    kReset
+    kReset,
+    kZoom,
+    kSetEye,
+    kSetFov
   };
   int operation = 0;
-  double angle = 0;                                  ///< rad: rotations; orbit azimuth
+  double angle = 0;                                  ///< rad: rotations; orbit azimuth; field of view
   double angle2 = 0;                                 ///< rad: orbit elevation
-  Eigen::Vector3d vector = Eigen::Vector3d::Zero();  ///< m: translation, scale centre, look-at point
-  double factor = 1;                                 ///< scale
+  Eigen::Vector3d vector = Eigen::Vector3d::Zero();  ///< m: translation, scale centre, look-at point, eye
+  double factor = 1;                                 ///< scale; zoom (2: half the distance)
   int width = 0, height = 0;                         ///< px, image size
 
   static constexpr double kMaxAngle = 6.283185307179586;  ///< rad, one turn
   static constexpr double kMaxDistance = 1000;            ///< m
   static constexpr double kMinFactor = 0.01, kMaxFactor = 100;
+  static constexpr double kMinFov = 10, kMaxFov = 120;  ///< degrees, vertical field of view
   static constexpr int kMinSize = 16, kMaxWidth = 3840, kMaxHeight = 2160;  ///< px
 };
 
 /// Applies `move` to `camera` if it is valid; returns "" or the reason naming the field and
 /// what is allowed (then `camera` is unchanged). kReset is the caller's: it knows the scene.
+/// A move may not put the eye below Camera::kMinEyeHeight above the ground (nor lower it if it
+/// is there already): orbit and zoom stop at the ground, the other moves are rejected.
 std::string ApplyCameraMove(const CameraMove& move, Camera* camera);
 
 }  // namespace flagsim::render

@@ -9,6 +9,20 @@ namespace {
 
 constexpr size_t kMaxCommandBytes = 64 * 1024;
 
+// CameraMoveOf copies the operation code: the renderer's moves are numbered as CAMERA's.
+static_assert(render::CameraMove::kRotateX == camera_command_t::ROTATE_X &&
+              render::CameraMove::kRotateY == camera_command_t::ROTATE_Y &&
+              render::CameraMove::kRotateZ == camera_command_t::ROTATE_Z &&
+              render::CameraMove::kTranslate == camera_command_t::TRANSLATE &&
+              render::CameraMove::kScale == camera_command_t::SCALE &&
+              render::CameraMove::kOrbit == camera_command_t::ORBIT &&
+              render::CameraMove::kLookAt == camera_command_t::LOOK_AT &&
+              render::CameraMove::kSetImageSize == camera_command_t::SET_IMAGE_SIZE &&
+              render::CameraMove::kReset == camera_command_t::RESET &&
+              render::CameraMove::kZoom == camera_command_t::ZOOM &&
+              render::CameraMove::kSetEye == camera_command_t::SET_EYE &&
+              render::CameraMove::kSetFov == camera_command_t::SET_FOV);
+
 /// The timeline operation a KEYFRAME operation code names.
 std::optional<TimelineEdit::Operation> OperationOf(int8_t operation) {
   switch (operation) {

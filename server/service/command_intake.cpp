@@ -171,10 +171,13 @@ std::string CommandIntake::ApplyRefresh(const refresh_request_t& command) {
 std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
   const render::CameraMove move = CameraMoveOf(command);
   const std::string problem = session_.ApplyCamera(move);
-  // The moves of eye and target (a timeline's camera); rotations and scaling of the scene stay.
-  const bool moves =
-      move.operation == render::CameraMove::kTranslate || move.operation == render::CameraMove::kOrbit ||
-      move.operation == render::CameraMove::kLookAt || move.operation == render::CameraMove::kReset;
+  // The moves of eye, target and field of view (a timeline's camera); rotations and scaling of
+  // the scene stay.
+  using Move = render::CameraMove;
+  const bool moves = move.operation == Move::kTranslate || move.operation == Move::kOrbit ||
+                     move.operation == Move::kLookAt || move.operation == Move::kReset ||
+                     move.operation == Move::kZoom || move.operation == Move::kSetEye ||
+                     move.operation == Move::kSetFov;
   if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {false, moves, {}});
   return problem;
 }

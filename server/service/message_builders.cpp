@@ -1,6 +1,7 @@
 #include "message_builders.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "parameter_table.hpp"
 #include "sim/integrator.hpp"
@@ -23,6 +24,8 @@ state_t MakeStateMessage(const Session& session, int64_t utime) {
   for (int k = 0; k < 3; ++k) message.pole_top[k] = model.pole_top[k];
   const sim::Vec3 wind = simulation.wind().Mean(state.time);
   for (int k = 0; k < 3; ++k) message.wind[k] = wind[k];
+  message.wind_gust = simulation.wind().Gust(state.time);
+  message.kinetic_energy = sim::KineticEnergy(model, state);
   const int n = state.num_nodes();
   message.num_values = 3 * n;
   message.position.resize(3 * n);
@@ -43,8 +46,12 @@ FrameInfo MakeFrameInfo(const Session& session, int64_t utime) {
   info.utime = utime;
   info.step = session.simulation().state().step;
   info.sim_time = session.simulation().state().time;
-  info.view = session.scene().camera.View();
-  info.projection = session.scene().camera.Projection();
+  const render::Camera& camera = session.scene().camera;
+  info.view = camera.View();
+  info.projection = camera.Projection();
+  info.camera_eye = camera.eye;
+  info.camera_target = camera.target;
+  info.camera_fov = camera.fov_y * 180 / M_PI;
   return info;
 }
 

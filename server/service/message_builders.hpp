@@ -17,14 +17,14 @@
 
 namespace flagsim {
 
-/// The flag's nodes now: positions, grid, pole, mean wind, hash.
+/// The flag's nodes now: positions, grid, pole, mean wind and gust strength, kinetic energy, hash.
 state_t MakeStateMessage(const Session& session, int64_t utime);
 
 /// STATE messages per second of simulated time: the scene's rate, or 1 Hz while the flag
 /// sleeps (it does not move; once a second says so).
 double StateRate(const Session& session);
 
-/// The step, time and camera of a frame drawn now, for its manifest.
+/// The step, time and camera (matrices, eye, target, fov) of a frame drawn now, for its manifest.
 FrameInfo MakeFrameInfo(const Session& session, int64_t utime);
 
 /// The parameter table with the session's current values.

@@ -146,6 +146,11 @@ EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInf
     manifest.view[k] = info.view.data()[k];  // Eigen is column-major, as the message says
     manifest.projection[k] = info.projection.data()[k];
   }
+  for (int k = 0; k < 3; ++k) {
+    manifest.camera_eye[k] = info.camera_eye[k];
+    manifest.camera_target[k] = info.camera_target[k];
+  }
+  manifest.camera_fov = info.camera_fov;
   if (keyframe) {
     keyframe_requested_ = false;
     frames_since_keyframe_ = 0;

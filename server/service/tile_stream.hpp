@@ -21,12 +21,16 @@
 
 namespace flagsim {
 
+/// What a frame's manifest says besides its tiles: when, and the camera it was drawn with.
 struct FrameInfo {
-  int64_t utime = 0;
-  int64_t step = 0;
-  double sim_time = 0;
-  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
-  Eigen::Matrix4d projection = Eigen::Matrix4d::Identity();
+  int64_t utime = 0;                                         ///< microseconds since the Unix epoch
+  int64_t step = 0;                                          ///< the simulation step drawn
+  double sim_time = 0;                                       ///< s
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();        ///< world -> camera
+  Eigen::Matrix4d projection = Eigen::Matrix4d::Identity();  ///< camera -> clip
+  Eigen::Vector3d camera_eye = Eigen::Vector3d::Zero();      ///< m
+  Eigen::Vector3d camera_target = Eigen::Vector3d::Zero();   ///< m, the point looked at
+  double camera_fov = 0;                                     ///< degrees, vertical field of view
 };
 
 /// A tile's place in the image, px.

@@ -16,7 +16,20 @@ uint64_t StateHash(const ClothState<Real>& state) {
   return hash;
 }
 
+template <typename Real>
+double KineticEnergy(const ClothModel<Real>& model, const ClothState<Real>& state) {
+  double energy = 0;
+  for (int i = 0; i < state.num_nodes(); ++i) {
+    if (model.pinned(i)) continue;
+    const double vx = state.vx[i], vy = state.vy[i], vz = state.vz[i];
+    energy += 0.5 * double(model.mass[i]) * (vx * vx + vy * vy + vz * vz);
+  }
+  return energy;
+}
+
 template uint64_t StateHash<float>(const ClothState<float>&);
 template uint64_t StateHash<double>(const ClothState<double>&);
+template double KineticEnergy<float>(const ClothModel<float>&, const ClothState<float>&);
+template double KineticEnergy<double>(const ClothModel<double>&, const ClothState<double>&);
 
 }  // namespace flagsim::sim

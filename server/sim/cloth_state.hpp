@@ -37,4 +37,9 @@ ClothState<Real> RestState(const ClothModel<Real>& model) {
 template <typename Real>
 uint64_t StateHash(const ClothState<Real>& state);
 
+/// J: sum over the free nodes of m |v|^2 / 2, in double, node by node in index order (the same
+/// at any thread count). Pinned nodes (inverse mass 0) ride the pole and are left out.
+template <typename Real>
+double KineticEnergy(const ClothModel<Real>& model, const ClothState<Real>& state);
+
 }  // namespace flagsim::sim

@@ -68,6 +68,25 @@ if [[ $(head -c 8 "$work/frame.png" | od -An -tx1 | tr -d ' ') == 89504e470d0a1a
   passes=$((passes + 1)); echo "ok      and it is a PNG"
 else failures=$((failures + 1)); echo "FAIL    $work/frame.png is not a PNG"; fi
 expect 0 "camera orbit accepted" "$flagctl" --prefix $prefix camera orbit 20 5
+expect 0 "camera orbit under the ground stops at it" "$flagctl" --prefix $prefix camera orbit 0 -60
+expect 3 "camera eye under the ground rejected" "$flagctl" --prefix $prefix camera eye 1 -1 3
+contains "vector: the eye would be at y = -1 m" "  saying where the eye would be"
+expect 0 "camera eye accepted" "$flagctl" --prefix $prefix camera eye 2.6 1.9 4.4
+expect 0 "camera zoom accepted" "$flagctl" --prefix $prefix camera zoom 2
+expect 0 "camera scale without --about zooms" "$flagctl" --prefix $prefix camera scale 0.5
+# Scaling the world 100 times about the origin would sink the eye (y / 100 < 0.05 m); a zoom of
+# 100 only brings it near the target.
+expect 3 "camera scale --about the origin that would sink the eye rejected" "$flagctl" --prefix $prefix \
+  camera scale 100 --about 0 0 0
+contains "factor: the eye would be at y = " "  naming the ground"
+expect 0 "camera scale 100 without --about zooms, to 0.1 m from the target" "$flagctl" --prefix $prefix \
+  camera scale 100
+expect 3 "camera fov out of range rejected" "$flagctl" --prefix $prefix camera fov 200
+contains "angle: 200 degrees is out of range; allowed 10 .. 120 degrees" "  in degrees"
+expect 0 "camera fov accepted" "$flagctl" --prefix $prefix camera fov 50
+expect 0 "camera reset accepted" "$flagctl" --prefix $prefix camera reset
+expect 0 "camera rotate-x --help describes its argument" "$flagctl" camera rotate-x --help
+matches "degrees +FLOAT REQUIRED +[a-z]" "  with a description"
 expect 0 "camera size accepted" "$flagctl" --prefix $prefix camera size 320 180
 expect 3 "camera size too large rejected" "$flagctl" --prefix $prefix camera size 9000 100
 contains "width: 9000 is out of range" "  with the field named"

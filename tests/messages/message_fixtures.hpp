@@ -56,6 +56,9 @@ inline state_t SomeState() {
   state.num_values = 18;
   state.position.assign(18, 0.5f);
   state.state_hash = -5;
+  state.wind[0] = 6;
+  state.wind_gust = 0.2;
+  state.kinetic_energy = 0.125;
   return state;
 }
 
@@ -126,6 +129,9 @@ inline frame_t SomeFrame() {
   frame_t frame{};
   frame.tile_indices = {0, 3, 4};
   frame.num_tiles = 3;
+  frame.camera_eye[2] = 4.4;
+  frame.camera_target[1] = 2.2;
+  frame.camera_fov = 40;
   return frame;
 }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "message_fixtures.hpp"
 
 namespace flagsim::wire {
@@ -21,6 +23,23 @@ TEST(WireSchema, KnowsEveryTypeAndItsFields) {
   EXPECT_EQ(state->fields.front().name, "utime");
   EXPECT_EQ(state->fields.back().name, "position");
   EXPECT_EQ(state->fields.back().dimensions.front().count_field, "num_values");
+  const auto names = [](const StructLayout& layout) {
+    std::vector<std::string> list;
+    for (const Field& field : layout.fields) list.push_back(field.name);
+    return list;
+  };
+  const std::vector<std::string> state_fields = names(*state);
+  const auto wind = std::find(state_fields.begin(), state_fields.end(), "wind");
+  ASSERT_GE(std::distance(wind, state_fields.end()), 3);
+  EXPECT_EQ(*(wind + 1), "wind_gust");
+  EXPECT_EQ(*(wind + 2), "kinetic_energy");
+  const StructLayout* frame = schema.Find("frame_t");
+  ASSERT_NE(frame, nullptr);
+  const std::vector<std::string> frame_fields = names(*frame);
+  ASSERT_GE(frame_fields.size(), 4u);
+  EXPECT_EQ(std::vector<std::string>(frame_fields.end() - 4, frame_fields.end()),
+            (std::vector<std::string>{"projection", "camera_eye", "camera_target", "camera_fov"}));
+  EXPECT_EQ(frame->fields[frame->fields.size() - 3].dimensions.front().fixed_size, 3);
 }
 
 TEST(WireSchema, ParsesCommentsConstantsNestingAndFixedArrays) {

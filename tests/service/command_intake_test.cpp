@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "command_client.hpp"
@@ -217,6 +218,46 @@ TEST_F(CommandIntakeTest, CameraMovesAreValidatedAndApplied) {
   reset.operation = camera_command_t::RESET;
   EXPECT_EQ(client_.Send(channels_.camera, reset).result, CommandOutcome::kAccepted);
   EXPECT_EQ(server_.session().scene().camera.eye, eye);
+}
+
+TEST_F(CommandIntakeTest, ZoomEyeAndFieldOfViewAreAppliedOverTheBus) {
+  const render::Camera& camera = server_.session().scene().camera;
+  const double distance = (camera.eye - camera.target).norm();
+  camera_command_t zoom{};
+  zoom.operation = camera_command_t::ZOOM;
+  zoom.factor = 2;
+  CommandOutcome outcome = client_.Send(channels_.camera, zoom);
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
+  EXPECT_NEAR((camera.eye - camera.target).norm(), distance / 2, 1e-12);
+
+  camera_command_t eye{};
+  eye.operation = camera_command_t::SET_EYE;
+  eye.vector[0] = 1;
+  eye.vector[1] = 1.5;
+  eye.vector[2] = 3;
+  outcome = client_.Send(channels_.camera, eye);
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
+  EXPECT_EQ(camera.eye, Eigen::Vector3d(1, 1.5, 3));
+  eye.vector[1] = -2;  // under the ground
+  outcome = client_.Send(channels_.camera, eye);
+  EXPECT_EQ(outcome.result, CommandOutcome::kRejected);
+  EXPECT_EQ(outcome.reason.rfind("vector: the eye would be at y = -2 m", 0), 0u) << outcome.reason;
+  EXPECT_EQ(camera.eye, Eigen::Vector3d(1, 1.5, 3));
+
+  camera_command_t fov{};
+  fov.operation = camera_command_t::SET_FOV;
+  fov.angle = 50 * M_PI / 180;
+  outcome = client_.Send(channels_.camera, fov);
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
+  EXPECT_EQ(camera.fov_y, fov.angle);
+  fov.angle = 150 * M_PI / 180;
+  outcome = client_.Send(channels_.camera, fov);
+  EXPECT_EQ(outcome.result, CommandOutcome::kRejected);
+  EXPECT_EQ(outcome.reason.rfind("angle: 150 degrees is out of range; allowed 10 .. 120 degrees", 0), 0u)
+      << outcome.reason;
+  EXPECT_EQ(camera.fov_y, 50 * M_PI / 180);
+  EXPECT_EQ(stats().commands_accepted, 3);
+  EXPECT_EQ(stats().commands_rejected, 2);
 }
 
 TEST_F(CommandIntakeTest, RefreshRequestsAreAcknowledged) {

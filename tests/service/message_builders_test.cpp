@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "checked_decode.hpp"
 #include "messages/message_fixtures.hpp"
 #include "parameter_table.hpp"
@@ -26,6 +28,79 @@ TEST(MessageBuilders, StateCarriesEveryNodeAndTheHash) {
   const auto decoded = wire::CheckedDecode<state_t>(bytes.data(), bytes.size(), 1 << 20, &error);
   ASSERT_TRUE(decoded) << error;
   EXPECT_EQ(decoded->position, state.position);
+}
+
+TEST(MessageBuilders, StateCarriesTheKineticEnergyOfTheFreeNodes) {
+  Session session{Scene{}};
+  for (int i = 0; i < 40; ++i) session.Step();
+  // 1/2 sum m v^2 over the nodes that are not pinned to the pole, worked out here.
+  const auto& model = session.simulation().model();
+  const auto& now = session.simulation().state();
+  double expected = 0;
+  int free_nodes = 0;
+  for (int i = 0; i < model.num_nodes(); ++i) {
+    if (model.inverse_mass[i] == 0) continue;
+    ++free_nodes;
+    const double speed_squared =
+        double(now.vx[i]) * now.vx[i] + double(now.vy[i]) * now.vy[i] + double(now.vz[i]) * now.vz[i];
+    expected += 0.5 * double(model.mass[i]) * speed_squared;
+  }
+  ASSERT_LT(free_nodes, model.num_nodes());  // some are pinned
+  ASSERT_GT(expected, 0);                    // the flag moves
+  const state_t state = MakeStateMessage(session, 1);
+  EXPECT_NEAR(state.kinetic_energy, expected, 1e-12 * expected);
+  const auto bytes = testing::Encode(state);
+  std::string error;
+  const auto decoded = wire::CheckedDecode<state_t>(bytes.data(), bytes.size(), 1 << 20, &error);
+  ASSERT_TRUE(decoded) << error;
+  EXPECT_EQ(decoded->kinetic_energy, state.kinetic_energy);
+}
+
+TEST(MessageBuilders, StateCarriesTheGustStrengthInForce) {
+  Session session{Scene{}};
+  const double dt = session.scene().sim.dt, from = Scene{}.wind.gust;
+  EXPECT_EQ(MakeStateMessage(session, 1).wind_gust, from);
+  sim::WindSettings wind = Scene{}.wind;
+  wind.gust = from + 0.4;
+  wind.ramp_time = 10 * dt;  // the gusts grow over ten steps
+  ASSERT_EQ(session.ApplyWind(wind), "");
+  for (int i = 0; i < 4; ++i) session.Step();
+  EXPECT_NEAR(MakeStateMessage(session, 1).wind_gust, from + 0.4 * 4 / 10, 1e-9);
+  for (int i = 0; i < 10; ++i) session.Step();
+  EXPECT_EQ(MakeStateMessage(session, 1).wind_gust, wind.gust);
+}
+
+TEST(MessageBuilders, FramesCarryTheCameraAsDrawn) {
+  Session session{Scene{}};
+  render::CameraMove move;
+  move.operation = render::CameraMove::kSetEye;
+  move.vector = Eigen::Vector3d(1, 1.5, 3);
+  ASSERT_EQ(session.ApplyCamera(move), "");
+  move.operation = render::CameraMove::kSetFov;
+  move.angle = 50 * M_PI / 180;
+  ASSERT_EQ(session.ApplyCamera(move), "");
+  move.operation = render::CameraMove::kSetImageSize;
+  move.width = 96;
+  move.height = 64;
+  ASSERT_EQ(session.ApplyCamera(move), "");
+  const render::Camera& camera = session.scene().camera;
+  const FrameInfo info = MakeFrameInfo(session, 5);
+  EXPECT_EQ(info.camera_eye, Eigen::Vector3d(1, 1.5, 3));
+  EXPECT_EQ(info.camera_target, camera.target);
+  EXPECT_NEAR(info.camera_fov, 50, 1e-12);  // degrees
+  EXPECT_EQ(info.view, camera.View());
+  // In the manifest, and through the wire.
+  TileStream stream;
+  const frame_t manifest = stream.Encode(session.RenderFrame(1), info, 1).manifest;
+  const auto bytes = testing::Encode(manifest);
+  std::string error;
+  const auto decoded = wire::CheckedDecode<frame_t>(bytes.data(), bytes.size(), 1 << 20, &error);
+  ASSERT_TRUE(decoded) << error;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(decoded->camera_eye[k], info.camera_eye[k]);
+    EXPECT_EQ(decoded->camera_target[k], camera.target[k]);
+  }
+  EXPECT_NEAR(decoded->camera_fov, 50, 1e-12);
 }
 
 TEST(MessageBuilders, ParamsListTheWholeTableWithCurrentValues) {

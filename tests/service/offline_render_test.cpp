@@ -93,6 +93,8 @@ TEST(OfflineRender, PublishesWhatALiveServerDoesOnSimulatedTime) {
       const state_t state = Decoded<state_t>(event);
       EXPECT_EQ(event.timestamp, kStart + std::llround(state.sim_time * 1e6));
       EXPECT_EQ(state.utime, event.timestamp);
+      EXPECT_EQ(state.wind_gust, scene.wind.gust);
+      EXPECT_EQ(state.kinetic_energy > 0, state.step > 0) << "at rest only at the start";
     }
   }
   EXPECT_EQ(count[channels.frame], frames);
@@ -106,6 +108,11 @@ TEST(OfflineRender, PublishesWhatALiveServerDoesOnSimulatedTime) {
     EXPECT_EQ(manifests[k].frame_id, k);
     EXPECT_NEAR(manifests[k].sim_time, k / frame_rate, scene.sim.dt / 2 + 1e-9) << "frame " << k;
     EXPECT_EQ(manifests[k].keyframe, k % TileStream::kKeyframeInterval == 0);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(manifests[k].camera_eye[i], scene.camera.eye[i]);
+      EXPECT_EQ(manifests[k].camera_target[i], scene.camera.target[i]);
+    }
+    EXPECT_NEAR(manifests[k].camera_fov, scene.camera.fov_y * 180 / M_PI, 1e-12);
   }
 }
 

@@ -42,6 +42,26 @@ TEST(TileStream, FirstFrameIsAKeyframeOfEveryTile) {
   EXPECT_EQ(frame.manifest.frame_hash, ImageHash(image.rgb.data(), image.rgb.size()));
 }
 
+TEST(TileStream, TheManifestCarriesTheFramesCamera) {
+  FrameInfo info;
+  info.step = 17;
+  info.view(0, 3) = -2.5;
+  info.projection(3, 2) = -1;
+  info.camera_eye = Eigen::Vector3d(1, 2, 3);
+  info.camera_target = Eigen::Vector3d(-4, 5, -6);
+  info.camera_fov = 47.5;
+  TileStream stream;
+  const frame_t manifest = stream.Encode(Gradient(), info, 1).manifest;
+  EXPECT_EQ(manifest.step, 17);
+  EXPECT_EQ(manifest.view[12], -2.5);  // column-major: column 3, row 0
+  EXPECT_EQ(manifest.projection[11], -1);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(manifest.camera_eye[k], info.camera_eye[k]);
+    EXPECT_EQ(manifest.camera_target[k], info.camera_target[k]);
+  }
+  EXPECT_EQ(manifest.camera_fov, 47.5);
+}
+
 TEST(TileStream, UnchangedTilesAreNotSentAgainBarTheRollingRefresh) {
   TileStream stream;
   render::Framebuffer image = Gradient();

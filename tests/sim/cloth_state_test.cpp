@@ -33,5 +33,18 @@ TEST(StateHash, IsXxh3OfTheArraysInOrder) {
   EXPECT_EQ(StateHash(state), XXH3_64bits(bytes, sizeof(bytes)));
 }
 
+TEST(KineticEnergy, IsHalfMassTimesSpeedSquaredOverTheFreeNodes) {
+  const ClothModel<float> model = BuildClothModel<float>(SimParams{});
+  ClothState<float> state = RestState(model);
+  EXPECT_EQ(KineticEnergy(model, state), 0);
+  const int free = model.index(1, 3), pinned = model.index(1, 0);
+  ASSERT_FALSE(model.pinned(free));
+  ASSERT_TRUE(model.pinned(pinned));
+  state.vx[free] = 3;
+  state.vy[free] = -4;    // 5 m/s
+  state.vz[pinned] = 10;  // a pinned node rides the pole: left out
+  EXPECT_DOUBLE_EQ(KineticEnergy(model, state), 0.5 * double(model.mass[free]) * 5 * 5);
+}
+
 }  // namespace
 }  // namespace flagsim::sim

@@ -1,0 +1,20 @@
+// flagctl serve: the live view's gateway (client/gateway/serve.hpp) on the bus of the globals.
+#include <cstdio>
+
+#include "bus.hpp"
+#include "channels.hpp"
+#include "flagctl_commands.hpp"
+#include "gateway/serve.hpp"
+
+namespace flagsim {
+
+int Serve(const Globals& globals, const gateway::ServeOptions& options) {
+  // A deep receive buffer: frames arrive as bursts of tiles (as for every flagctl reader).
+  Bus bus(Bus::WithReceiveBuffer(globals.lcm_url, 8 << 20));
+  const Channels channels(globals.prefix);
+  gateway::ServeOptions serve = options;
+  serve.command_timeout = globals.timeout;
+  return gateway::Serve(bus, channels, serve);
+}
+
+}  // namespace flagsim

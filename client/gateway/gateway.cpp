@@ -1,0 +1,385 @@
+#include "gateway.hpp"
+
+#include "bus_json.hpp"
+#include "command_requests.hpp"
+#include "compressed_image.hpp"
+#include "flagsim/refresh_request_t.hpp"
+#include "foxglove_wire.hpp"
+#include "process_usage.hpp"
+#include "scene_update.hpp"
+#include "stream_reader.hpp"
+
+namespace flagsim::gateway {
+namespace {
+
+using nlohmann::json;
+
+uint64_t Nanoseconds(int64_t utime) { return utime > 0 ? uint64_t(utime) * 1000 : 0; }
+
+json CommandResultJson(const CommandOutcome& outcome, const std::string& channel, int64_t sequence) {
+  const bool answered = outcome.result != CommandOutcome::kNoAnswer;
+  return {
+      {"accepted", outcome.result == CommandOutcome::kAccepted},
+      {"answered", answered},
+      {"reason", answered ? outcome.reason : "no answer from flagd (an ACK) within the gateway's timeout"},
+      {"step", outcome.step},
+      {"channel", channel},
+      {"sequence", sequence}};
+}
+
+/// {name: value} of the parameters whose values differ between `before` and `after`.
+json ChangedValues(const std::optional<params_t>& before, const params_t& after) {
+  std::map<std::string, json> old;
+  if (before) {
+    for (const parameter_t& p : before->params) old[p.name] = ParameterValue(p);
+  }
+  json changed = json::array();
+  for (const parameter_t& p : after.params) {
+    const json value = ParameterValue(p);
+    const auto found = old.find(p.name);
+    if (found == old.end() || found->second != value) changed.push_back({{"name", p.name}, {"value", value}});
+  }
+  return changed;
+}
+
+}  // namespace
+
+Gateway::Gateway(Bus& bus, const Channels& channels, GatewayOptions options)
+    : bus_(bus),
+      channels_(channels),
+      options_(std::move(options)),
+      relay_(bus, NewGatewayClientId(), options_.command_timeout),
+      recorder_(bus, channels.AllChannels(), options_.record_directory) {
+  feeds_[kAcksChannel] = ChannelFeed(kAcksKept);
+  started_ = status_window_start_ = next_status_ = options_.clock();
+  SubscribeBus();
+  RequestKeyframe();  // the mirror fills within a frame, not at the next periodic keyframe
+}
+
+// Every subscription decodes with its lengths checked; garbage is dropped and counted, never
+// trusted (a count that grows says, for one, that flagd was built from other message types).
+void Gateway::SubscribeBus() {
+  int64_t* dropped = &counters_.bus_undecodable;
+  SubscribeDecoded<tile_t>(
+      bus_, channels_.tile, [this](const tile_t& tile) { mirror_.AddTile(tile); }, dropped, 10000);
+  SubscribeDecoded<frame_t>(
+      bus_, channels_.frame, [this](const frame_t& frame) { OnFrame(frame); }, dropped, 1000);
+  SubscribeDecoded<state_t>(
+      bus_, channels_.state,
+      [this](const state_t& message) {
+        const auto state = std::make_shared<const state_t>(message);
+        feeds_[kStateChannel].PublishLazily(Nanoseconds(state->utime),
+                                            [state] { return StateSummaryJson(*state).dump(); });
+        feeds_[kSceneChannel].PublishLazily(Nanoseconds(state->utime),
+                                            [state] { return SceneUpdateJson(*state); });
+        WakeAll();
+      },
+      dropped, 200);
+  SubscribeDecoded<status_t>(
+      bus_, channels_.status,
+      [this](const status_t& status) { Publish(kStatusChannel, status.utime, StatusJson(status).dump()); },
+      dropped);
+  SubscribeDecoded<timeline_t>(
+      bus_, channels_.timeline,
+      [this](const timeline_t& timeline) {
+        Publish(kTimelineChannel, timeline.utime, TimelineJson(timeline).dump());
+      },
+      dropped);
+  SubscribeDecoded<params_t>(
+      bus_, channels_.params, [this](const params_t& params) { OnParams(params); }, dropped);
+  SubscribeDecoded<ack_t>(
+      bus_, channels_.ack, [this](const ack_t& ack) { OnAck(ack); }, dropped, 1000);
+}
+
+void Gateway::Publish(uint32_t channel, int64_t utime, std::string payload) {
+  feeds_[channel].Publish(Nanoseconds(utime), std::move(payload));
+  WakeAll();
+}
+
+// manifest => mirror (hash-checked) => camera and, if anyone watches it, the JPEG feed
+void Gateway::OnFrame(const frame_t& manifest) {
+  const FrameMirror::Result result = mirror_.AddManifest(manifest);
+  if (result == FrameMirror::Result::kIncomplete) {
+    ++counters_.incomplete_frames;
+    if (++incomplete_in_a_row_ >= kIncompleteBeforeRefresh) RequestKeyframe();
+    return;
+  }
+  const auto frame = mirror_.latest();
+  if (result != FrameMirror::Result::kComplete || !frame || frame->frame_id != manifest.frame_id) return;
+  incomplete_in_a_row_ = 0;
+  ++counters_.frames_mirrored;
+  // The camera goes out when it moved (compared without the frame id), not with every frame.
+  json camera = CameraJson(manifest);
+  json pose = camera;
+  pose.erase("frame_id");
+  if (pose != last_camera_) {
+    last_camera_ = std::move(pose);
+    feeds_[kCameraChannel].Publish(Nanoseconds(manifest.utime), camera.dump());
+  }
+  if (frame->image) {
+    feeds_[kImageChannel].PublishLazily(Nanoseconds(frame->utime), [frame] {
+      return CompressedImageJson(EncodeJpeg(frame->image->data(), frame->width, frame->height), frame->utime);
+    });
+  }
+  WakeAll();
+}
+
+// PARAMS => the table's channel, and parameterValues of what changed to the clients following it
+void Gateway::OnParams(const params_t& params) {
+  const json changed = ChangedValues(params_, params);
+  params_ = params;
+  feeds_[kParamsChannel].Publish(Nanoseconds(params.utime), ParamsJson(params).dump());
+  if (!changed.empty()) {
+    for (auto& [id, client] : clients_) client->protocol().OnParametersChanged(changed);
+  }
+  WakeAll();
+}
+
+void Gateway::OnAck(const ack_t& ack) {
+  feeds_[kAcksChannel].Publish(Nanoseconds(ack.utime), AckJson(ack).dump());
+  relay_.OnAck(ack);
+  WakeAll();
+}
+
+void Gateway::WakeAll() {
+  for (auto& [id, client] : clients_) client->Wake();
+}
+
+void Gateway::RequestKeyframe() {
+  const double now = options_.clock();
+  if (now - last_refresh_ < kRefreshInterval) return;
+  last_refresh_ = now;
+  relay_.Send(channels_.refresh, refresh_request_t{}, now, [](const CommandOutcome&, int64_t) {});
+}
+
+int Gateway::Attach(GatewayClient* client) {
+  const int id = next_client_++;
+  clients_[id] = client;
+  return id;
+}
+
+void Gateway::Detach(int client) {
+  clients_.erase(client);
+  counters_at_window_.erase(client);
+}
+
+ClientProtocol* Gateway::Client(int id) {
+  const auto found = clients_.find(id);
+  return found == clients_.end() ? nullptr : &found->second->protocol();
+}
+
+void Gateway::SubscribersChanged(uint32_t channel, int delta) {
+  if (channel > kChannelCount) return;
+  subscribers_[channel] += delta;
+  if (channel == kImageChannel) mirror_.KeepImages(subscribers_[channel] > 0);
+}
+
+template <class Command>
+void Gateway::Relay(int client, const std::string& channel, const Command& command,
+                    std::function<void(ClientProtocol&, const json&)> reply) {
+  const std::string name = channels_.Unprefixed(channel);
+  relay_.Send(channel, command, options_.clock(),
+              [this, client, name, reply](const CommandOutcome& outcome, int64_t sequence) {
+                ClientProtocol* protocol = Client(client);
+                if (protocol == nullptr) return;  // the client left meanwhile
+                reply(*protocol, CommandResultJson(outcome, name, sequence));
+                clients_[client]->Wake();
+              });
+}
+
+// request JSON => the service's command => relay => reply(result); fail(why) if it is none
+void Gateway::ServiceRequest(int client, uint32_t service, const json& request,
+                             std::function<void(ClientProtocol&, const json&)> reply,
+                             std::function<void(const std::string&)> fail) {
+  std::string problem;
+  switch (service) {
+    case kWindService: {
+      wind_command_t command{};
+      problem = WindCommandOf(request, &command);
+      if (problem.empty()) Relay(client, channels_.wind, command, reply);
+      break;
+    }
+    case kSetService: {
+      param_command_t command{};
+      problem = SetCommandOf(request, &command);
+      if (problem.empty()) Relay(client, channels_.param, command, reply);
+      break;
+    }
+    case kCameraService: {
+      camera_command_t command{};
+      problem = CameraCommandOf(request, &command);
+      if (problem.empty()) Relay(client, channels_.camera, command, reply);
+      break;
+    }
+    case kKeyframeService: {
+      keyframe_command_t command{};
+      problem = KeyframeCommandOf(request, &command);
+      if (problem.empty()) Relay(client, channels_.keyframe, command, reply);
+      break;
+    }
+    case kRefreshService:
+      Client(client)->ResetTiles();
+      Relay(client, channels_.refresh, refresh_request_t{}, reply);
+      break;
+    default:
+      problem = "service " + std::to_string(service) + " is not one of this gateway's";
+  }
+  if (!problem.empty()) fail(problem);
+}
+
+void Gateway::CallService(int client, uint32_t service, uint32_t call, std::string_view encoding,
+                          std::string_view payload) {
+  ClientProtocol* protocol = Client(client);
+  const auto fail = [this, client, service, call](const std::string& message) {
+    if (ClientProtocol* p = Client(client)) {
+      p->SendJson(
+          {{"op", "serviceCallFailure"}, {"serviceId", service}, {"callId", call}, {"message", message}});
+    }
+  };
+  const ServiceInfo* info = FindService(service);
+  if (protocol == nullptr) return;
+  if (info == nullptr) return fail("service " + std::to_string(service) + " is not advertised");
+  if (encoding != "json")
+    return fail("encoding '" + std::string(encoding) + "' is not supported; allowed json");
+  const json request = json::parse(payload, nullptr, false);
+  if (request.is_discarded()) return fail(std::string(info->name) + ": the request is not JSON");
+  const auto respond = [service, call](ClientProtocol& p, const json& result) {
+    p.SendBinary(ServiceCallResponse(service, call, "json", result.dump()));
+  };
+  if (service == kRecordService) {
+    const std::string action = request.is_object() ? request.value("action", "") : "";
+    const double now = options_.clock();
+    if (action == "start") {
+      const json state = recorder_.Start(now);
+      if (recorder_.recording()) RequestKeyframe();  // the log starts with a whole frame and a checkpoint
+      return respond(*protocol, state);
+    }
+    if (action == "stop") return respond(*protocol, recorder_.Stop(now));
+    if (action == "status") return respond(*protocol, recorder_.Status(now));
+    return fail("/flag/record: action must be start, stop or status");
+  }
+  ServiceRequest(client, service, request, respond, fail);
+}
+
+void Gateway::PublishCommand(int client, uint32_t service, std::string_view payload) {
+  const ServiceInfo* info = FindService(service);
+  const std::string topic(info ? info->name : "?");
+  const auto warn = [this, client, topic](const std::string& message) {
+    if (ClientProtocol* p = Client(client)) p->SendStatus(ClientProtocol::kWarning, topic + ": " + message);
+  };
+  const json request = json::parse(payload, nullptr, false);
+  if (request.is_discarded()) return warn("the message is not JSON");
+  // The ACK goes to /flag/acks for everyone; the publisher also hears of a rejection.
+  const auto reply = [topic](ClientProtocol& p, const json& result) {
+    if (!result.value("accepted", false)) {
+      p.SendStatus(ClientProtocol::kWarning, topic + ": " + result.value("reason", std::string()));
+    }
+  };
+  ServiceRequest(client, service, request, reply, warn);
+}
+
+void Gateway::GetParameters(int client, const json& names, const std::string& id) {
+  ClientProtocol* protocol = Client(client);
+  if (protocol == nullptr) return;
+  json values = json::array();
+  if (params_) {
+    for (const json& value : ParameterValues(*params_)) {
+      const bool wanted =
+          names.empty() || std::find(names.begin(), names.end(), value["name"]) != names.end();
+      if (wanted) values.push_back(value);
+    }
+  }
+  json message = {{"op", "parameterValues"}, {"parameters", values}};
+  if (!id.empty()) message["id"] = id;
+  protocol->SendJson(message);
+}
+
+// parameters [{name, value}] => one PARAM command => after its ACK: a status if it was
+// rejected, then parameterValues with the values in force (from the newest PARAMS, which the
+// server publishes before it answers).
+void Gateway::SetParameters(int client, const json& parameters, const std::string& id) {
+  param_command_t command{};
+  json names = json::array();
+  std::string problem;
+  for (const json& parameter : parameters) {
+    const auto name = parameter.find("name");
+    const auto value = parameter.find("value");
+    if (!parameter.is_object() || name == parameter.end() || !name->is_string()) {
+      problem = "setParameters: each parameter needs a name";
+      break;
+    }
+    if (value == parameter.end()) {
+      problem = name->get<std::string>() + ": parameters cannot be unset; give a value";
+      break;
+    }
+    const std::string text = ParameterText(name->get<std::string>(), *value, &problem);
+    if (!problem.empty()) break;
+    command.names.push_back(name->get<std::string>());
+    command.values.push_back(text);
+    names.push_back(*name);
+  }
+  command.num_assignments = static_cast<int32_t>(command.names.size());
+  const std::string status_id = "setParameters:" + id;
+  const auto answer = [this, client, names, id, status_id](ClientProtocol& p, const json& result) {
+    if (!result.value("accepted", false)) {
+      p.SendStatus(ClientProtocol::kError, result.value("reason", std::string()), status_id);
+    }
+    GetParameters(client, names, id);
+  };
+  if (problem.empty() && command.num_assignments == 0) problem = "setParameters: no parameters given";
+  if (!problem.empty()) {
+    if (ClientProtocol* p = Client(client)) answer(*p, {{"accepted", false}, {"reason", problem}});
+    return;
+  }
+  Relay(client, channels_.param, command, answer);
+}
+
+void Gateway::Tick() {
+  const double now = options_.clock();
+  relay_.Tick(now);
+  recorder_.StopIfDone(now);
+  if (now >= next_status_) {
+    PublishGatewayStatus(now);
+    next_status_ = std::max(next_status_ + 1.0, now);
+  }
+}
+
+double Gateway::NextDue() const { return std::min(relay_.NextDue(), next_status_); }
+
+void Gateway::PublishGatewayStatus(double now) {
+  const double window = std::max(now - status_window_start_, 1e-3);
+  json per_client = json::array();
+  double bytes_per_second = 0;
+  for (auto& [id, client] : clients_) {
+    const ClientCounters& counters = client->protocol().counters();
+    const ClientCounters before = counters_at_window_[id];
+    const double rate = double(counters.bytes_sent - before.bytes_sent) / window;
+    bytes_per_second += rate;
+    per_client.push_back({{"id", id},
+                          {"address", client->address()},
+                          {"bytes_per_second", rate},
+                          {"frames_per_second", double(counters.frames_sent - before.frames_sent) / window},
+                          {"frames_skipped", counters.frames_skipped},
+                          {"queued_bytes", client->protocol().queued_bytes()}});
+    counters_at_window_[id] = counters;
+  }
+  const ProcessUsage usage = ReadProcessUsage();
+  const json status = {{"uptime", now - started_},
+                       {"clients", clients_.size()},
+                       {"clients_dropped", counters_.clients_dropped},
+                       {"unauthorized", counters_.unauthorized},
+                       {"forbidden", counters_.forbidden},
+                       {"protocol_errors", counters_.protocol_errors},
+                       {"frames_per_second", double(counters_.frames_mirrored - frames_at_window_) / window},
+                       {"incomplete_frames", counters_.incomplete_frames},
+                       {"bus_undecodable", counters_.bus_undecodable},
+                       {"cpu_seconds", usage.cpu_seconds},
+                       {"resident_bytes", usage.resident_bytes},
+                       {"bytes_per_second", bytes_per_second},
+                       {"per_client", per_client}};
+  frames_at_window_ = counters_.frames_mirrored;
+  status_window_start_ = now;
+  Publish(kGatewayStatusChannel, UnixMicros(), status.dump());
+}
+
+}  // namespace flagsim::gateway

@@ -1,0 +1,146 @@
+#include "serve.hpp"
+
+#include <unistd.h>
+
+#include <boost/asio.hpp>
+#include <boost/asio/posix/stream_descriptor.hpp>
+#include <chrono>
+#include <cstdio>
+
+#include "gateway.hpp"
+#include "http_session.hpp"
+#include "server_context.hpp"
+
+namespace flagsim::gateway {
+namespace {
+
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+
+constexpr auto kTickInterval = std::chrono::milliseconds(20);  ///< command resends, status
+
+/// "HOST:PORT" (HOST may be [v6], a literal address or localhost) => endpoint; throws with a
+/// message that says what is allowed.
+tcp::endpoint ParseListen(const std::string& listen) {
+  const size_t colon = listen.rfind(':');
+  if (colon == std::string::npos) throw std::invalid_argument("--listen " + listen + ": expected HOST:PORT");
+  std::string host = listen.substr(0, colon);
+  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  if (host == "localhost") host = "127.0.0.1";
+  int port = -1;
+  try {
+    port = std::stoi(listen.substr(colon + 1));
+  } catch (const std::exception&) {
+  }
+  if (port < 0 || port > 65535)
+    throw std::invalid_argument("--listen " + listen + ": the port must be 0 .. 65535");
+  boost::system::error_code error;
+  const net::ip::address address = net::ip::make_address(host, error);
+  if (error)
+    throw std::invalid_argument("--listen " + listen + ": '" + host + "' is not an IP address or localhost");
+  return {address, static_cast<unsigned short>(port)};
+}
+
+/// The host part of the URLs to print.
+std::string UrlHost(const tcp::endpoint& endpoint) {
+  const net::ip::address address = endpoint.address();
+  if (address.is_unspecified()) {
+    char name[256] = "localhost";
+    gethostname(name, sizeof(name) - 1);
+    return name;
+  }
+  return address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
+}
+
+class EventLoop {
+ public:
+  EventLoop(net::io_context& io, Bus& bus, ServerContext& context, const tcp::endpoint& endpoint)
+      : io_(io),
+        bus_(bus),
+        context_(context),
+        acceptor_(io, endpoint),
+        bus_watch_(io, ::dup(bus.fileno())),
+        ticker_(io),
+        signals_(io, SIGINT, SIGTERM) {
+    Accept();
+    WatchBus();
+    Tick();
+    signals_.async_wait([this](const boost::system::error_code&, int) { io_.stop(); });
+  }
+  tcp::endpoint local_endpoint() const { return acceptor_.local_endpoint(); }
+
+ private:
+  void Accept() {
+    acceptor_.async_accept([this](boost::system::error_code error, tcp::socket socket) {
+      if (!error) std::make_shared<HttpSession>(std::move(socket), context_)->Start();
+      Accept();
+    });
+  }
+  // The bus's descriptor is readable: dispatch everything waiting, then watch again.
+  void WatchBus() {
+    bus_watch_.async_wait(net::posix::stream_descriptor::wait_read, [this](boost::system::error_code error) {
+      if (error) return;
+      bus_.HandleAll();
+      WatchBus();
+    });
+  }
+  void Tick() {
+    ticker_.expires_after(kTickInterval);
+    ticker_.async_wait([this](boost::system::error_code error) {
+      if (error) return;
+      context_.gateway.Tick();
+      Tick();
+    });
+  }
+
+  net::io_context& io_;
+  Bus& bus_;
+  ServerContext& context_;
+  tcp::acceptor acceptor_;
+  net::posix::stream_descriptor bus_watch_;
+  net::steady_timer ticker_;
+  net::signal_set signals_;
+};
+
+}  // namespace
+
+int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
+  tcp::endpoint endpoint;
+  try {
+    endpoint = ParseListen(options.listen);
+  } catch (const std::invalid_argument& error) {
+    std::fprintf(stderr, "flagctl serve: %s\n", error.what());
+    return 2;
+  }
+  GatewayOptions gateway_options;
+  gateway_options.command_timeout = options.command_timeout;
+  gateway_options.record_directory = options.record_directory;
+  gateway_options.name = "flagsim (" + channels.prefix + " on " + bus.url() + ")";
+  Gateway gateway(bus, channels, gateway_options);
+  ServerContext context{gateway,
+                        {options.token, endpoint.address().is_loopback(), options.allow_origins},
+                        std::to_string(UnixMicros())};
+  if (context.access.token.empty() && !context.access.loopback) context.access.token = NewToken();
+
+  net::io_context io(1);
+  std::unique_ptr<EventLoop> loop;
+  try {
+    loop = std::make_unique<EventLoop>(io, bus, context, endpoint);
+  } catch (const boost::system::system_error& error) {
+    std::fprintf(stderr, "flagctl serve: cannot listen on %s: %s\n", options.listen.c_str(), error.what());
+    return 1;
+  }
+  const std::string host = UrlHost(endpoint) + ":" + std::to_string(loop->local_endpoint().port());
+  const std::string query = context.access.token.empty() ? "" : "?token=" + context.access.token;
+  std::printf("flagctl serve: live view   http://%s/%s\n", host.c_str(), query.c_str());
+  std::printf("flagctl serve: Foxglove    ws://%s/%s  (Foxglove WebSocket connection)\n", host.c_str(),
+              query.c_str());
+  std::printf("flagctl serve: bus %s, prefix %s; recordings go to %s/\n", bus.url().c_str(),
+              channels.prefix.c_str(), options.record_directory.c_str());
+  std::fflush(stdout);
+  io.run();
+  std::printf("flagctl serve: stopped\n");
+  return 0;
+}
+
+}  // namespace flagsim::gateway

@@ -1,0 +1,27 @@
+// `flagctl serve`: the gateway's event loop. One thread runs everything: the HTTP and
+// WebSocket connections (Boost.Asio), the bus (its file descriptor watched by the same loop),
+// the gateway's ticks (command resends, its status), and SIGINT/SIGTERM, which end it.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bus.hpp"
+#include "channels.hpp"
+
+namespace flagsim::gateway {
+
+struct ServeOptions {
+  std::string listen = "127.0.0.1:8080";  ///< HOST:PORT; port 0 picks a free one
+  std::string token;                      ///< "" = none on loopback, generated beyond it
+  std::vector<std::string> allow_origins;
+  std::string record_directory = "recordings";
+  double command_timeout = 2.0;  ///< s to wait for a command's ACK
+};
+
+/// Serves until a signal. Prints the URLs to open on stdout. Returns 0, or 1 if it cannot
+/// listen (the reason on stderr).
+int Serve(Bus& bus, const Channels& channels, const ServeOptions& options);
+
+}  // namespace flagsim::gateway

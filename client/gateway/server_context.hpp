@@ -1,0 +1,26 @@
+// What every connection of the gateway's server shares: the gateway, who may come in, and the
+// limits. One event loop runs them all.
+#pragma once
+
+#include <string>
+
+#include "access_policy.hpp"
+#include "gateway.hpp"
+
+namespace flagsim::gateway {
+
+struct ServerContext {
+  static constexpr size_t kMaxHeaderBytes = 8 * 1024;
+  static constexpr size_t kMaxClientMessageBytes = 256 * 1024;  ///< a WebSocket message from a client
+  static constexpr int kMaxWebSocketClients = 32;
+  static constexpr double kWriteTimeout = 10;  ///< s a client may take to read one message
+  static constexpr double kHttpTimeout = 30;   ///< s for a request to arrive, or a response to leave
+  static constexpr double kHandshakeTimeout = 10;
+
+  Gateway& gateway;
+  AccessPolicy access;
+  std::string session_id;  ///< serverInfo's: this gateway's run
+  int websocket_clients = 0;
+};
+
+}  // namespace flagsim::gateway

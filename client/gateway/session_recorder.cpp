@@ -1,0 +1,98 @@
+#include "session_recorder.hpp"
+
+#include <sys/stat.h>
+
+#include <cctype>
+#include <ctime>
+#include <filesystem>
+
+namespace flagsim::gateway {
+namespace {
+
+/// "flagsim-20261123-204501.lcmlog", local time.
+std::string NewLogName() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char name[64];
+  std::strftime(name, sizeof(name), "flagsim-%Y%m%d-%H%M%S.lcmlog", &local);
+  return name;
+}
+
+bool PlainName(std::string_view name) {
+  if (name.empty() || name.size() > 128 || name.front() == '.') return false;
+  for (char c : name) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) return false;
+  }
+  return name.size() > 7 && name.substr(name.size() - 7) == ".lcmlog";
+}
+
+}  // namespace
+
+SessionRecorder::SessionRecorder(Bus& bus, std::string channel_regex, std::string directory)
+    : bus_(bus), channel_regex_(std::move(channel_regex)), directory_(std::move(directory)) {}
+
+SessionRecorder::~SessionRecorder() = default;
+
+nlohmann::json SessionRecorder::Start(double now) {
+  if (recorder_) return State(now, "a recording is already running: " + name_);
+  std::error_code error;
+  std::filesystem::create_directories(directory_, error);
+  if (error) return State(now, "cannot make the directory " + directory_ + ": " + error.message());
+  std::string name = NewLogName();
+  for (int n = 2; std::filesystem::exists(directory_ + "/" + name); ++n) {
+    name = NewLogName();
+    name.insert(name.size() - 7, "-" + std::to_string(n));
+  }
+  try {
+    recorder_ = std::make_unique<LogRecorder>(bus_, channel_regex_, directory_ + "/" + name);
+  } catch (const std::exception& failure) {
+    return State(now, failure.what());
+  }
+  name_ = name;
+  started_ = now;
+  last_error_.clear();
+  return State(now);
+}
+
+nlohmann::json SessionRecorder::Stop(double now) {
+  if (!recorder_) return State(now, "no recording is running");
+  last_events_ = recorder_->events();
+  last_bytes_ = recorder_->bytes();
+  if (recorder_->failed())
+    last_error_ = "writing " + name_ + " failed after " + std::to_string(last_events_) + " events";
+  recorder_.reset();  // closes the log
+  stopped_ = now;
+  return State(now);
+}
+
+bool SessionRecorder::StopIfDone(double now) {
+  if (!recorder_ || (!recorder_->failed() && recorder_->bytes() < kMaxBytes)) return false;
+  Stop(now);
+  if (last_error_.empty()) last_error_ = "stopped at " + std::to_string(kMaxBytes >> 30) + " GiB";
+  return true;
+}
+
+nlohmann::json SessionRecorder::Status(double now) const { return State(now); }
+
+nlohmann::json SessionRecorder::State(double now, const std::string& error) const {
+  const bool running = recorder_ != nullptr;
+  nlohmann::json state = {{"recording", running},
+                          {"file", name_},
+                          {"url", !running && !name_.empty() ? "/recordings/" + name_ : ""},
+                          {"events", running ? recorder_->events() : last_events_},
+                          {"bytes", running ? recorder_->bytes() : last_bytes_},
+                          {"seconds", name_.empty() ? 0.0 : (running ? now : stopped_) - started_},
+                          {"error", error.empty() ? last_error_ : error}};
+  return state;
+}
+
+std::optional<std::string> SessionRecorder::FinishedFile(std::string_view name) const {
+  if (!PlainName(name) || (recorder_ && name == name_)) return std::nullopt;
+  const std::string path = directory_ + "/" + std::string(name);
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) return std::nullopt;
+  return path;
+}
+
+}  // namespace flagsim::gateway

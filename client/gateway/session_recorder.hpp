@@ -1,0 +1,51 @@
+// The gateway's recorder (service /flag/record): every channel of the server into an LCM log,
+// as `flagctl record` makes one, started and stopped by any client; once stopped, the log is
+// served for download at /recordings/NAME. One recording at a time, bounded in size.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "bus.hpp"
+#include "log_recorder.hpp"
+
+namespace flagsim::gateway {
+
+class SessionRecorder {
+ public:
+  static constexpr uint64_t kMaxBytes = uint64_t(4) << 30;  ///< a recording stops at this size
+
+  /// Logs go into `directory` (made when the first recording starts).
+  SessionRecorder(Bus& bus, std::string channel_regex, std::string directory);
+  ~SessionRecorder();
+
+  /// Each answers with the recording's state (schemas/record_result.json).
+  nlohmann::json Start(double now);
+  nlohmann::json Stop(double now);
+  nlohmann::json Status(double now) const;
+  /// Stops a recording that failed or grew past kMaxBytes; true if it did.
+  bool StopIfDone(double now);
+
+  bool recording() const { return recorder_ != nullptr; }
+  /// The path of a finished recording named `name` (no directories in it); nullopt if none.
+  std::optional<std::string> FinishedFile(std::string_view name) const;
+
+ private:
+  nlohmann::json State(double now, const std::string& error = "") const;
+
+  Bus& bus_;
+  std::string channel_regex_;
+  std::string directory_;
+  std::unique_ptr<LogRecorder> recorder_;
+  std::string name_;  ///< the current or last recording's file name
+  double started_ = 0;
+  double stopped_ = 0;
+  int64_t last_events_ = 0;
+  uint64_t last_bytes_ = 0;
+  std::string last_error_;
+};
+
+}  // namespace flagsim::gateway

@@ -1,0 +1,369 @@
+// The gateway with a real flagd server on an in-process bus (memq://) and clients without
+// sockets: what they are sent, how their requests reach the server, and what bad requests do.
+#include "gateway/gateway.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "event_log_reader.hpp"
+#include "gateway/foxglove_wire.hpp"
+#include "server.hpp"
+#include "tile_update_reader.hpp"
+
+namespace flagsim::gateway {
+namespace {
+
+using nlohmann::json;
+
+uint32_t U32(const std::string& bytes, size_t at) {
+  uint32_t value = 0;
+  for (int k = 3; k >= 0; --k) value = value << 8 | uint8_t(bytes[at + k]);
+  return value;
+}
+
+/// A client without a socket: what the protocol gives it, sorted by kind.
+class FakeClient : public GatewayClient {
+ public:
+  explicit FakeClient(Gateway& gateway) : gateway_(gateway), id_(gateway.Attach(this)) {
+    protocol_.emplace(gateway, id_);
+    protocol_->Start("test", "1");
+  }
+  ~FakeClient() override {
+    protocol_.reset();
+    gateway_.Detach(id_);
+  }
+  ClientProtocol& protocol() override { return *protocol_; }
+  void Wake() override {}
+  std::string address() const override { return "test"; }
+
+  /// Takes everything waiting, as a socket that keeps up would.
+  void Read() {
+    while (std::optional<Outgoing> message = protocol_->Next()) {
+      const std::string bytes = message->head + (message->body ? *message->body : "");
+      if (!message->binary) {
+        texts.push_back(json::parse(bytes));
+      } else if (bytes[0] == kMessageData) {
+        data[U32(bytes, 1)].push_back(bytes.substr(13));
+      } else if (bytes[0] == kServiceCallResponse) {
+        const uint32_t encoding = U32(bytes, 9);
+        responses[U32(bytes, 5)] = json::parse(bytes.substr(13 + encoding));
+      }
+    }
+  }
+  void Send(const json& message) { protocol_->OnText(message.dump()); }
+  void Subscribe(uint32_t channel) {
+    Send({{"op", "subscribe"}, {"subscriptions", {{{"id", channel}, {"channelId", channel}}}}});
+  }
+  void Call(uint32_t service, uint32_t call, const std::string& request) {
+    std::string frame(1, char(kServiceCallRequest));
+    AppendU32(&frame, service);
+    AppendU32(&frame, call);
+    AppendU32(&frame, 4);
+    protocol_->OnBinary(frame + "json" + request);
+  }
+  /// The texts with `op`, and `id` if given.
+  std::vector<json> Texts(const std::string& op, const std::string& id = "") const {
+    std::vector<json> found;
+    for (const json& text : texts) {
+      if (text["op"] == op && (id.empty() || text.value("id", "") == id)) found.push_back(text);
+    }
+    return found;
+  }
+  json LatestJson(uint32_t channel) const { return json::parse(data.at(channel).back()); }
+
+  std::vector<json> texts;
+  std::map<uint32_t, std::vector<std::string>> data;  ///< by subscription id (= channel id here)
+  std::map<uint32_t, json> responses;                 ///< by call id
+
+ private:
+  Gateway& gateway_;
+  int id_;
+  std::optional<ClientProtocol> protocol_;
+};
+
+Scene SmallScene() {
+  Scene scene;
+  scene.camera.width = 320;
+  scene.camera.height = 192;
+  return scene;
+}
+
+class GatewayTest : public ::testing::Test {
+ protected:
+  GatewayTest()
+      : bus_("memq://"),
+        server_(bus_, channels_, SmallScene(), ServerOptions{true, 0, {}}),
+        gateway_(bus_, channels_, Options()),
+        client_(gateway_) {}
+
+  static GatewayOptions Options() {
+    GatewayOptions options;
+    options.record_directory = ::testing::TempDir() + "/gateway_test_recordings";
+    return options;
+  }
+
+  /// Runs the server, the bus and the gateway until `done` (the client reading all along),
+  /// within a generous bound of wall time; false if it never came.
+  bool RunUntil(const std::function<bool()>& done, FakeClient* reader = nullptr) {
+    reader = reader ? reader : &client_;
+    const double give_up = MonotonicSeconds() + 30;
+    while (MonotonicSeconds() < give_up) {
+      server_.Tick(MonotonicSeconds());
+      bus_.HandleAll();
+      gateway_.Tick();
+      reader->Read();
+      if (done()) return true;
+    }
+    return false;
+  }
+  bool HasData(uint32_t channel, size_t count = 1) const {
+    return client_.data.count(channel) > 0 && client_.data.at(channel).size() >= count;
+  }
+
+  Bus bus_;
+  Channels channels_;
+  Server server_;
+  Gateway gateway_;
+  FakeClient client_;
+};
+
+TEST_F(GatewayTest, ANewClientHearsWhoWeAreWhatWeSendAndWhatWeServe) {
+  client_.Read();
+  ASSERT_GE(client_.texts.size(), 3u);
+  EXPECT_EQ(client_.texts[0]["op"], "serverInfo");
+  EXPECT_EQ(client_.texts[1]["op"], "advertise");
+  EXPECT_EQ(client_.texts[1]["channels"].size(), kChannelCount);
+  EXPECT_EQ(client_.texts[1]["channels"][kImageChannel - 1]["schemaName"], "foxglove.CompressedImage");
+  EXPECT_EQ(client_.texts[2]["op"], "advertiseServices");
+  EXPECT_EQ(client_.texts[2]["services"].size(), 6u);
+  for (const json& channel : client_.texts[1]["channels"]) {
+    if (channel["encoding"] == "json") {
+      EXPECT_FALSE(json::parse(channel["schema"].get<std::string>(), nullptr, false).is_discarded())
+          << channel;
+    }
+  }
+}
+
+TEST_F(GatewayTest, TheServersStreamsArriveAsJson) {
+  for (uint32_t channel : {kStateChannel, kStatusChannel, kParamsChannel, kTimelineChannel, kCameraChannel}) {
+    client_.Subscribe(channel);
+  }
+  ASSERT_TRUE(RunUntil([&] {
+    return HasData(kStateChannel) && HasData(kStatusChannel) && HasData(kParamsChannel) &&
+           HasData(kTimelineChannel) && HasData(kCameraChannel);
+  }));
+  const json state = client_.LatestJson(kStateChannel);
+  EXPECT_EQ(state["cols"], server_.session().simulation().model().cols);
+  EXPECT_EQ(state["state_hash"].get<std::string>().size(), 16u);
+  EXPECT_GT(state["tip_from_pole"].get<double>(), 0.5) << "a flag in a breeze stands out from its pole";
+  EXPECT_TRUE(state.contains("kinetic_energy"));
+  EXPECT_EQ(client_.LatestJson(kStatusChannel)["integrator"], "symplectic_euler");
+  bool found = false;
+  const json params = client_.LatestJson(kParamsChannel);
+  for (const json& row : params["parameters"]) {
+    if (row["name"] == "stiffness") {
+      found = true;
+      EXPECT_EQ(row["kind"], "real");
+      EXPECT_EQ(row["value"].get<double>(), server_.session().scene().sim.stiffness);
+    }
+  }
+  EXPECT_TRUE(found);
+  EXPECT_TRUE(client_.LatestJson(kTimelineChannel)["keys"].is_array());
+  EXPECT_EQ(client_.LatestJson(kCameraChannel)["width"], 320);
+}
+
+TEST_F(GatewayTest, TheTilesAssembleToTheServersFramesExactly) {
+  client_.Subscribe(kTilesChannel);
+  testing::TileUpdateReader reader;
+  size_t applied = 0;
+  ASSERT_TRUE(RunUntil([&] {
+    for (; HasData(kTilesChannel, applied + 1); ++applied) {
+      EXPECT_EQ(reader.Apply(client_.data[kTilesChannel][applied]), "") << "update " << applied;
+      EXPECT_EQ(reader.keyframe(), applied == 0);
+    }
+    return applied >= 5;
+  }));
+  EXPECT_EQ(reader.frame_id(), gateway_.frame()->frame_id);
+}
+
+TEST_F(GatewayTest, ASlowClientSkipsToTheNewestFrameInsteadOfQueueing) {
+  FakeClient slow(gateway_);
+  slow.Subscribe(kTilesChannel);
+  client_.Subscribe(kTilesChannel);
+  ASSERT_TRUE(RunUntil([&] { return gateway_.frame() != nullptr; }));
+  slow.Read();  // the keyframe
+  ASSERT_EQ(slow.data[kTilesChannel].size(), 1u);
+  testing::TileUpdateReader reader;
+  ASSERT_EQ(reader.Apply(slow.data[kTilesChannel][0]), "");
+  ASSERT_TRUE(RunUntil([&] { return HasData(kTilesChannel, 8); }));
+  slow.Read();
+  ASSERT_EQ(slow.data[kTilesChannel].size(), 2u) << "one update, to the newest frame";
+  EXPECT_EQ(reader.Apply(slow.data[kTilesChannel][1]), "");
+  EXPECT_EQ(reader.frame_id(), gateway_.frame()->frame_id);
+  EXPECT_GE(slow.protocol().counters().frames_skipped, 5u);
+}
+
+TEST_F(GatewayTest, ACommandServiceIsAnsweredWithTheServersAck) {
+  client_.Call(kWindService, 7, R"({"velocity": [9, 0, 1], "gust": 0.1})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(7) > 0; }));
+  const json& result = client_.responses[7];
+  EXPECT_TRUE(result["accepted"]) << result;
+  EXPECT_EQ(result["channel"], "WIND");
+  EXPECT_GE(result["step"].get<int64_t>(), 0);
+  EXPECT_EQ(server_.session().scene().wind.velocity, (sim::Vec3{9, 0, 1}));
+}
+
+TEST_F(GatewayTest, ARejectedCommandSaysWhyAndChangesNothing) {
+  const sim::Vec3 before = server_.session().scene().wind.velocity;
+  client_.Call(kWindService, 8, R"({"velocity": [9, 0, 1], "gust": 3})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(8) > 0; }));
+  EXPECT_FALSE(client_.responses[8]["accepted"]);
+  EXPECT_TRUE(client_.responses[8]["answered"]);
+  EXPECT_EQ(client_.responses[8]["reason"].get<std::string>().rfind("gust:", 0), 0u) << client_.responses[8];
+  EXPECT_EQ(server_.session().scene().wind.velocity, before);
+}
+
+TEST_F(GatewayTest, RequestsThatAreNoCommandFailTheCallWithTheReason) {
+  client_.Call(kCameraService, 1, "not json");
+  client_.Call(kCameraService, 2, R"({"operation": "spin"})");
+  client_.Call(99, 3, "{}");
+  client_.Read();
+  const auto failures = client_.Texts("serviceCallFailure");
+  ASSERT_EQ(failures.size(), 3u);
+  EXPECT_EQ(failures[0]["message"], "/flag/camera: the request is not JSON");
+  EXPECT_EQ(failures[1]["callId"], 2);
+  EXPECT_NE(failures[1]["message"].get<std::string>().find("'spin' is not one"), std::string::npos);
+  EXPECT_EQ(failures[2]["message"], "service 99 is not advertised");
+}
+
+TEST_F(GatewayTest, SetParametersAnswersWithTheValuesInForceAndRejectionsWithTheReason) {
+  client_.Send(
+      {{"op", "setParameters"}, {"id", "a"}, {"parameters", {{{"name", "stiffness"}, {"value", 1500}}}}});
+  ASSERT_TRUE(RunUntil([&] { return !client_.Texts("parameterValues", "a").empty(); }));
+  EXPECT_EQ(client_.Texts("parameterValues", "a")[0]["parameters"][0],
+            json({{"name", "stiffness"}, {"value", 1500.0}}));
+  EXPECT_EQ(server_.session().scene().sim.stiffness, 1500);
+
+  client_.Send(
+      {{"op", "setParameters"}, {"id", "b"}, {"parameters", {{{"name", "stiffness"}, {"value", -5}}}}});
+  ASSERT_TRUE(RunUntil([&] { return !client_.Texts("parameterValues", "b").empty(); }));
+  const auto statuses = client_.Texts("status", "setParameters:b");
+  ASSERT_EQ(statuses.size(), 1u);
+  EXPECT_EQ(statuses[0]["level"], ClientProtocol::kError);
+  EXPECT_EQ(statuses[0]["message"].get<std::string>().rfind("stiffness:", 0), 0u) << statuses[0];
+  EXPECT_EQ(client_.Texts("parameterValues", "b")[0]["parameters"][0]["value"], 1500.0) << "unchanged";
+  EXPECT_EQ(server_.session().scene().sim.stiffness, 1500);
+}
+
+TEST_F(GatewayTest, ParameterUpdatesGoToClientsThatFollowThem) {
+  client_.Send({{"op", "subscribeParameterUpdates"}, {"parameterNames", {"damping"}}});
+  client_.Call(kSetService, 1, R"({"parameters": {"damping": 0.2, "friction": 0.05}})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(1) > 0; }));
+  ASSERT_TRUE(client_.responses[1]["accepted"]) << client_.responses[1];
+  bool saw_damping = false;
+  for (const json& values : client_.Texts("parameterValues")) {
+    for (const json& value : values["parameters"]) {
+      EXPECT_EQ(value["name"], "damping") << "friction is not followed";
+      saw_damping |= value["value"] == 0.2;
+    }
+  }
+  EXPECT_TRUE(saw_damping);
+}
+
+TEST_F(GatewayTest, ClientsMayPublishCommandsOnTheCommandTopics) {
+  client_.Subscribe(kAcksChannel);
+  client_.Send(
+      {{"op", "advertise"},
+       {"channels", {{{"id", 5}, {"topic", "/flag/camera"}, {"encoding", "json"}, {"schemaName", "x"}}}}});
+  std::string frame(1, char(kClientMessageData));
+  AppendU32(&frame, 5);
+  client_.protocol().OnBinary(frame + R"({"operation": "orbit", "degrees": 20, "degrees2": 5})");
+  ASSERT_TRUE(RunUntil([&] { return HasData(kAcksChannel); }));
+  const json ack = client_.LatestJson(kAcksChannel);
+  EXPECT_EQ(ack["channel"], "CAMERA");
+  EXPECT_TRUE(ack["accepted"]) << ack;
+
+  client_.Send(
+      {{"op", "advertise"},
+       {"channels", {{{"id", 6}, {"topic", "/somewhere"}, {"encoding", "json"}, {"schemaName", "x"}}}}});
+  client_.Read();
+  EXPECT_NE(client_.texts.back()["message"].get<std::string>().find("not a topic to publish on"),
+            std::string::npos);
+}
+
+TEST_F(GatewayTest, HostileMessagesAreAnsweredAndLeaveTheGatewayServing) {
+  client_.Read();
+  const size_t before = client_.texts.size();
+  std::mt19937 random(7);
+  const std::vector<std::string> texts = {
+      "",
+      "{",
+      "[]",
+      "null",
+      R"({"op": 5})",
+      R"({"op": "subscribe"})",
+      R"({"op": "subscribe", "subscriptions": 7})",
+      R"({"op": "subscribe", "subscriptions": [{"id": -1, "channelId": 1}, {"id": 1, "channelId": 4000000000}]})",
+      R"({"op": "setParameters", "parameters": [{"value": 1}]})",
+      R"({"op": "getParameters", "parameterNames": {}})",
+      R"({"op": "fetchAsset", "uri": "file:///etc/passwd", "requestId": 1})",
+      std::string(1000, '[')};
+  for (const std::string& text : texts) client_.protocol().OnText(text);
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::string bytes(random() % 64, '\0');
+    for (char& c : bytes) c = char(random());
+    client_.protocol().OnBinary(bytes);
+  }
+  client_.Read();
+  EXPECT_GT(client_.texts.size(), before + texts.size() - 1);
+  EXPECT_GT(gateway_.counters().protocol_errors, texts.size());
+  client_.Call(kWindService, 77, R"({"velocity": [5, 0, 0]})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(77) > 0; }));
+  EXPECT_TRUE(client_.responses[77]["accepted"]);
+}
+
+TEST_F(GatewayTest, TheImageAndTheSceneAreForFoxglove) {
+  client_.Subscribe(kImageChannel);
+  client_.Subscribe(kSceneChannel);
+  ASSERT_TRUE(RunUntil([&] { return HasData(kImageChannel) && HasData(kSceneChannel); }));
+  const json image = client_.LatestJson(kImageChannel);
+  EXPECT_EQ(image["format"], "jpeg");
+  EXPECT_EQ(image["data"].get<std::string>().substr(0, 4), "/9j/") << "base64 of a JPEG's FF D8 FF";
+  const json scene = client_.LatestJson(kSceneChannel);
+  const auto& model = server_.session().simulation().model();
+  const json& flag = scene["entities"][0];
+  EXPECT_EQ(flag["id"], "flag");
+  EXPECT_EQ(flag["triangles"][0]["points"].size(), size_t(model.cols * model.rows));
+  EXPECT_EQ(flag["triangles"][0]["indices"].size(), size_t(6 * (model.cols - 1) * (model.rows - 1)));
+  EXPECT_EQ(scene["entities"][1]["cylinders"].size(), 1u);
+}
+
+TEST_F(GatewayTest, ARecordingIsALogOfTheBusToDownload) {
+  client_.Call(kRecordService, 1, R"({"action": "start"})");
+  client_.Read();
+  ASSERT_TRUE(client_.responses[1]["recording"]) << client_.responses[1];
+  const std::string name = client_.responses[1]["file"];
+  EXPECT_FALSE(gateway_.RecordingFile(name)) << "not while it is being written";
+  const double until = MonotonicSeconds() + 0.5;
+  RunUntil([&] { return MonotonicSeconds() > until; });
+  client_.Call(kRecordService, 2, R"({"action": "stop"})");
+  client_.Read();
+  const json& stopped = client_.responses[2];
+  EXPECT_FALSE(stopped["recording"]);
+  EXPECT_EQ(stopped["url"], "/recordings/" + name);
+  EXPECT_GT(stopped["events"].get<int64_t>(), 10);
+  const std::optional<std::string> path = gateway_.RecordingFile(name);
+  ASSERT_TRUE(path);
+  EventLogReader log(*path);
+  LogEvent event;
+  while (log.Next(&event)) {
+  }
+  EXPECT_EQ(log.events(), stopped["events"].get<int64_t>());
+  EXPECT_FALSE(gateway_.RecordingFile("../" + name));
+  EXPECT_FALSE(gateway_.RecordingFile("/etc/passwd"));
+}
+
+}  // namespace
+}  // namespace flagsim::gateway

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# The live view as people and programs use it, over udpm:// inside a private network namespace
+# (ctest runs this through scripts/netns-run): flagd and flagctl serve with a token, then clients
+# the project did not write: Node's fetch and ws at the gateway's doors (access_test.mjs),
+# Foxglove's own protocol client (foxglove_client_test.mjs) and Chromium on the page
+# (browser_test.mjs). The page's screenshots stay in BUILD_DIR/tests/live_view/.
+# Usage: live_view_test.sh BUILD_DIR
+set -euo pipefail
+build=$1
+flagd=$build/server/flagd
+flagctl=$build/client/flagctl
+tests=$(cd "$(dirname "$0")/../web" && pwd)
+export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
+prefix=LIVE_
+token=$(head -c 16 /dev/urandom | od -An -tx1 | tr -d ' \n')
+work=$(mktemp -d)
+shots=$build/tests/live_view
+mkdir -p "$shots"
+server=""
+gateway=""
+cleanup() {
+  [[ -n $gateway ]] && kill "$gateway" 2>/dev/null || true
+  [[ -n $server ]] && kill "$server" 2>/dev/null || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+source "$(dirname "$0")/checks.sh"
+
+# wait_for_url LOG: the port flagctl serve printed in LOG (it listens on port 0: a free one).
+wait_for_port() {
+  for _ in $(seq 100); do
+    if grep -q "live view" "$1"; then
+      sed -n 's#.*live view *http://[^:]*:\([0-9]*\)/.*#\1#p' "$1" | head -1
+      return
+    fi
+    sleep 0.1
+  done
+  echo "no URL in $1" >&2
+  cat "$1" >&2
+  return 1
+}
+
+echo "-- the gateway's command line"
+expect 0 "flagctl serve --help" "$flagctl" serve --help
+contains "--allow-origin" "  lists its options"
+expect 2 "--listen without a port is a usage error" "$flagctl" --prefix $prefix serve --listen 127.0.0.1
+contains "expected HOST:PORT" "  and says what is expected"
+"$flagctl" --prefix $prefix serve --listen 0.0.0.0:0 --record-dir "$work/rec" >"$work/open.log" 2>&1 &
+open_gateway=$!
+wait_for_port "$work/open.log" >/dev/null
+if grep -Eq "live view +http://.*/\?token=[0-9a-f]{32}$" "$work/open.log"; then
+  pass "beyond loopback without --token, a token is generated and printed with the URL"
+else
+  fail "no generated token in the URL" "$work/open.log"
+fi
+kill -TERM $open_gateway
+wait $open_gateway && pass "flagctl serve stops cleanly on SIGTERM" || fail "flagctl serve's exit on SIGTERM"
+
+echo "-- a live server and its gateway"
+"$flagd" --prefix $prefix --log-level warn >"$work/flagd.log" 2>&1 &
+server=$!
+for _ in $(seq 50); do
+  "$flagctl" --prefix $prefix --timeout 0.5 status >/dev/null 2>&1 && break
+  sleep 0.2
+done
+"$flagctl" --prefix $prefix serve --listen 127.0.0.1:0 --token "$token" --record-dir "$work/rec" \
+  >"$work/serve.log" 2>&1 &
+gateway=$!
+port=$(wait_for_port "$work/serve.log")
+pass "flagctl serve listens (port $port)"
+
+run_node() {  # run_node DESCRIPTION SCRIPT ARGS...: a Node test; its checks are counted as one
+  local what=$1
+  shift
+  local start=$SECONDS
+  if node "$tests/$1" "${@:2}" >"$work/node.out" 2>&1; then
+    sed 's/^/      /' "$work/node.out"
+    pass "$what ($((SECONDS - start)) s)"
+  else
+    fail "$what ($((SECONDS - start)) s)" "$work/node.out"
+  fi
+}
+run_node "the gateway's doors: token, origin, hostile clients" access_test.mjs "http://127.0.0.1:$port" "$token"
+run_node "Foxglove's own client: channels, image, status, parameters, a service" \
+  foxglove_client_test.mjs "ws://127.0.0.1:$port/?token=$token"
+run_node "Chromium on the page: picture, camera, parameters, keyboard, timeline" \
+  browser_test.mjs "http://127.0.0.1:$port/?token=$token" "$flagctl" $prefix "$shots"
+
+kill -TERM "$gateway"
+if wait "$gateway"; then pass "the gateway stops cleanly"; else fail "the gateway's exit" "$work/serve.log"; fi
+gateway=""
+if kill -0 "$server" 2>/dev/null; then pass "flagd ran on throughout"; else fail "flagd died" "$work/flagd.log"; fi
+finish

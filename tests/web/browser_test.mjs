@@ -1,0 +1,150 @@
+// The live view in a real browser (Debian's Chromium, headless, driven by playwright-core):
+// the picture is the server's frame byte for byte, dragging orbits the camera, the parameter
+// panel sets a value and shows a rejection's reason, the keyboard resets the view, and a
+// timeline key is added and played. Leaves a screenshot of the page in OUT_DIR.
+//   node browser_test.mjs PAGE_URL FLAGCTL PREFIX OUT_DIR     (LCM_DEFAULT_URL in the environment)
+import { execFile } from "node:child_process";
+import { promisify } from "node:util";
+
+import { chromium } from "playwright-core";
+
+import { check, run, section, waitFor } from "./checks.mjs";
+import { readPngRGB } from "./png.mjs";
+
+const [pageUrl, flagctl, prefix, outDir] = process.argv.slice(2);
+const execute = promisify(execFile);
+
+/** flagctl SUBCOMMAND... on the test's server; its stdout. */
+async function flagctlRun(...args) {
+  const { stdout } = await execute(flagctl, ["--prefix", prefix, "--timeout", "5", ...args]);
+  return stdout;
+}
+
+const equalBytes = (a, b) => a.length === b.length && a.every((value, i) => value === b[i]);
+
+/** The page's hooks, read in the page by `read(arg)`. */
+const hooks = (page, read, arg) => page.evaluate(read, arg);
+
+async function checkPictureIsTheServersFrame(page) {
+  section("the picture is the server's frame");
+  await flagctlRun("set", "frame_rate=0");  // frames only on request: the one compared stays the newest
+  const snapshot = await flagctlRun("snapshot", "-o", `${outDir}/snapshot.png`);
+  const frameId = Number(/frame (\d+)/.exec(snapshot)[1]);
+  await page.waitForFunction((id) => window.flagsim.frame.id === id, frameId, { timeout: 15000 });
+  const png = readPngRGB(`${outDir}/snapshot.png`);
+  const shown = await hooks(page, () => ({ ...window.flagsim.frame, rgb: Array.from(window.flagsim.imageRGB()) }));
+  check(`the page shows frame ${frameId}, hash-checked`, shown.hashOk, shown.hash);
+  check("  its image equals flagctl snapshot's PNG of that frame, byte for byte",
+        shown.width === png.width && equalBytes(shown.rgb, png.rgb), { width: shown.width, png: png.width });
+  const canvas = await page.evaluate(() => {
+    const picture = document.querySelector("#picture");
+    const rgba = picture.getContext("2d").getImageData(0, 0, picture.width, picture.height).data;
+    return Array.from(rgba.filter((_, i) => i % 4 !== 3));
+  });
+  check("  and so does the canvas it is drawn on", equalBytes(canvas, png.rgb));
+  await flagctlRun("set", "frame_rate=30");
+}
+
+async function checkDragOrbits(page) {
+  section("drag to orbit");
+  const before = await hooks(page, () => window.flagsim.camera);
+  const box = await page.locator("#picture").boundingBox();
+  const y = box.y + box.height / 2;
+  await page.mouse.move(box.x + box.width / 2, y);
+  await page.mouse.down();
+  for (let step = 1; step <= 10; step += 1) await page.mouse.move(box.x + box.width / 2 + 15 * step, y);
+  await page.mouse.up();
+  const ack = await waitFor(() => hooks(page, () => window.flagsim.lastAck?.channel === "CAMERA" && window.flagsim.lastAck),
+                            10, "the CAMERA ACK");
+  check("the drag goes out as CAMERA and the server accepts it", ack.accepted === true, ack);
+  const after = await waitFor(() => hooks(page, (eye) => {
+    const camera = window.flagsim.camera;
+    return camera && camera.eye.some((value, k) => Math.abs(value - eye[k]) > 1e-6) && camera;
+  }, before.eye), 10, "a camera with a new eye");
+  const radius = (camera) => Math.hypot(...camera.eye.map((value, k) => value - camera.target[k]));
+  check("  the eye went round the target, at the same distance", Math.abs(radius(after) - radius(before)) < 1e-6,
+        { before: before.eye, after: after.eye });
+  const frame = await page.evaluate((view) => window.flagsim.waitForFrame(() => true, 10000).then(() => view), after.view);
+  check("  and frames keep coming, hash-checked, from the new view", (await hooks(page, () => window.flagsim.frame.hashOk)) && frame);
+  await page.screenshot({ path: `${outDir}/after-orbit.png` });
+}
+
+async function checkParameterPanel(page) {
+  section("the parameter panel");
+  const row = page.locator('.param-row[data-name="stiffness"]');
+  const box = row.locator('input[type="number"]');
+  await box.fill("1500");
+  await box.press("Enter");
+  await waitFor(() => hooks(page, () => window.flagsim.params?.find((p) => p.name === "stiffness")?.value === 1500),
+                10, "PARAMS with stiffness 1500");
+  check("a value typed in the panel reaches the server (PARAMS shows it)", true);
+  const params = await flagctlRun("params");
+  check("  flagctl params agrees", /^stiffness +1500 /m.test(params), params.split("\n").find((l) => l.startsWith("stiffness")));
+  await box.fill("-5");
+  await box.press("Enter");
+  const error = row.locator(".param-error");
+  await error.waitFor({ state: "visible", timeout: 10000 });
+  const reason = await error.textContent();
+  check("a value out of range shows the server's reason", reason.includes("stiffness: -5 is out of range"), reason);
+  await page.waitForTimeout(500);
+  const value = await hooks(page, () => window.flagsim.params.find((p) => p.name === "stiffness").value);
+  check("  and changes nothing", value === 1500 && /^stiffness +1500 /m.test(await flagctlRun("params")), value);
+  check("  the box shows the value in force again", Number(await box.inputValue()) === 1500);
+}
+
+async function checkKeyboardReset(page) {
+  section("the keyboard");
+  await page.locator("#stage").focus();
+  await page.keyboard.press("y");
+  await waitFor(() => hooks(page, () => window.flagsim.camera.eye[0] !== 2.6 && window.flagsim.camera), 10, "y to turn");
+  await page.keyboard.press("r");
+  const reset = await waitFor(() => hooks(page, () => {
+    const eye = window.flagsim.camera.eye;
+    return Math.abs(eye[0] - 2.6) < 1e-9 && Math.abs(eye[1] - 1.9) < 1e-9 && Math.abs(eye[2] - 4.4) < 1e-9 && eye;
+  }), 10, "the scene's camera after r");
+  check("r puts the camera back where the scene has it", Boolean(reset), reset);
+}
+
+async function checkTimeline(page) {
+  section("the timeline");
+  await page.locator("#timeline-body button.primary").click();  // a key at the position now
+  const keys = await waitFor(() => hooks(page, () => window.flagsim.timeline?.keys.length >= 1 && window.flagsim.timeline.keys),
+                             10, "TIMELINE with a key");
+  check("a key added from the page is on TIMELINE", keys.length === 1 && keys[0].wind !== undefined, keys);
+  check("  flagctl keyframe list shows it", /1 key/.test(await flagctlRun("keyframe", "list")));
+  await page.locator("#timeline-body button.play").click();
+  const playing = await waitFor(() => hooks(page, () => window.flagsim.timeline?.playing && window.flagsim.timeline),
+                                10, "TIMELINE playing");
+  check("Play plays it", playing.playing === true, playing);
+  await page.locator("#timeline-body button.play").click();
+  await waitFor(() => hooks(page, () => window.flagsim.timeline?.playing === false), 10, "TIMELINE paused");
+  check("  and Pause pauses it", true);
+}
+
+await run(async () => {
+  const browser = await chromium.launch({
+    executablePath: "/usr/bin/chromium",
+    args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
+           "--disable-component-update", "--disable-sync"],
+  });
+  try {
+    const page = await browser.newPage({ viewport: { width: 1600, height: 1000 } });
+    const errors = [];
+    page.on("pageerror", (error) => errors.push(error.message));
+    section("the page");
+    await page.goto(pageUrl);
+    await page.waitForFunction(() => window.flagsim?.framesShown >= 3 && window.flagsim.frame.hashOk, null, { timeout: 20000 });
+    check("the page loads, connects and shows hash-checked frames", true);
+    await checkPictureIsTheServersFrame(page);
+    await checkDragOrbits(page);
+    await checkParameterPanel(page);
+    await checkKeyboardReset(page);
+    await checkTimeline(page);
+    await page.waitForTimeout(1500);  // the plots fill a little
+    await page.screenshot({ path: `${outDir}/live-view.png` });
+    check(`a screenshot of the page: ${outDir}/live-view.png`, true);
+    check("no script errors on the page", errors.length === 0, errors);
+  } finally {
+    await browser.close();
+  }
+});

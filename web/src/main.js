@@ -1,0 +1,180 @@
+// The live view's wiring: one Connection to the gateway (the page's own host, its token passed
+// on), and each channel to the parts that show it.
+//
+//   /flag/tiles    -> PictureStream -> FrameImage -> FrameView (canvas), status bar, hooks
+//   /flag/camera   -> CameraControls (pixels -> metres), CameraPanel
+//   /flag/params   -> ParamPanel (+ protocol parameters), timeline keys
+//   /flag/state    -> WindPanel, Plots (tip, energy), TimelinePanel (playhead)
+//   /flag/status   -> Plots
+//   /flag/timeline -> TimelinePanel
+//   /flag/acks     -> status bar (last ACK)
+import "uplot/dist/uPlot.min.css";  // uPlot's own rules first, the page's after them
+import "../style.css";
+import { CameraControls } from "./camera_controls.js";
+import { CameraPanel } from "./camera_panel.js";
+import { Connection, gatewayUrl } from "./connection.js";
+import { FrameImage } from "./frame_image.js";
+import { FrameView } from "./frame_view.js";
+import { ParamPanel } from "./param_panel.js";
+import { readParamsTable, readValue } from "./params_table.js";
+import { PictureStream } from "./picture_stream.js";
+import { Plots } from "./plots.js";
+import { SessionTools } from "./session_tools.js";
+import { StatusBar } from "./status_bar.js";
+import { installTestHooks } from "./test_hooks.js";
+import { createHasher } from "./tile_decoder.js";
+import { TimelinePanel } from "./timeline_panel.js";
+import { readTimeline } from "./timeline_model.js";
+import { createToaster } from "./toast.js";
+import { WindPanel } from "./wind_panel.js";
+
+const kJsonTopics = ["/flag/state", "/flag/status", "/flag/params", "/flag/timeline", "/flag/camera", "/flag/acks"];
+const kStatusBarPeriod = 500;  ///< ms between updates of the frames-shown rate
+const textDecoder = new TextDecoder();
+const byId = (id) => document.getElementById(id);
+
+/// The page's token (`?token=`), passed on to the WebSocket and to download links.
+const token = new URLSearchParams(window.location.search).get("token") ?? "";
+function withToken(url) {
+  if (!token) return url;
+  return `${url}${url.includes("?") ? "&" : "?"}token=${encodeURIComponent(token)}`;
+}
+
+async function start() {
+  const hasher = await createHasher();  // XXH3-64 (WASM) is ready before the first tile
+  const connection = new Connection(gatewayUrl(window.location, token));
+  const toast = createToaster(byId("toasts"));
+  const page = {
+    connection, hasher, toast,
+    image: new FrameImage(hasher),
+    view: new FrameView({ stage: byId("stage"), canvas: byId("picture"), hud: byId("hud") }),
+    params: [], timeline: null, camera: null, state: null, status: null, lastAck: null, lastError: "",
+  };
+  const parts = createParts(page);
+  const frameShown = installTestHooks(page);
+  page.stream = new PictureStream({
+    connection, image: page.image, view: page.view,
+    onFrame: (image) => {
+      byId("stage").classList.add("has-frame");
+      parts.statusBar.setFrame(image);
+      parts.sessionTools.updateFrame();
+      frameShown();
+    },
+    onProblem: (text) => (page.lastError = text),
+  });
+  wireConnection(page, parts);
+  setInterval(() => {
+    parts.statusBar.setFps(page.view.shownFps());
+    page.view.updateHud();
+  }, kStatusBarPeriod);
+  connection.start();
+}
+
+/// The panels, each given what it reads and the connection it sends through.
+function createParts(page) {
+  const { connection, toast } = page;
+  const cameraControls = new CameraControls({ stage: byId("stage"), frameView: page.view, connection, getCamera: () => page.camera, toast });
+  return {
+    statusBar: new StatusBar(byId("status-bar")),
+    cameraControls,
+    cameraPanel: new CameraPanel({ container: byId("camera-body"), cameraControls, getCamera: () => page.camera }),
+    paramPanel: new ParamPanel({ container: byId("param-body"), connection, toast }),
+    windPanel: new WindPanel({ container: byId("wind-body"), connection }),
+    timelinePanel: new TimelinePanel({
+      container: byId("timeline-body"), connection, toast,
+      current: () => ({ state: page.state, params: page.params, camera: page.camera }),
+    }),
+    plots: new Plots({ container: byId("plots") }),
+    sessionTools: new SessionTools({
+      container: byId("session-tools"), connection, toast, withToken,
+      frame: () => ({ id: page.image.frameId, hashOk: page.image.hashOk }),
+      pngBlob: () => page.view.toPngBlob(),
+    }),
+  };
+}
+
+function wireConnection(page, parts) {
+  const { connection } = page;
+  for (const topic of kJsonTopics) connection.subscribe(topic);
+  connection.on("state", (connected, reason, retryIn) => {
+    const text = connected ? "connected" : `${reason}; retrying in ${((retryIn ?? 0) / 1000).toFixed(1)} s`;
+    parts.statusBar.setConnection(connected, text);
+    byId("stage").classList.toggle("offline", !connected);
+    byId("stage-empty").textContent = connected ? "waiting for the first frame …" : `no connection to the gateway: ${text}`;
+  });
+  connection.on("serverInfo", (info) => {
+    parts.statusBar.setServer(info.name);
+    if (page.params.length > 0) connection.subscribeParameters(page.params.map((p) => p.name));
+  });
+  connection.on("message", (topic, data) => {
+    if (topic === "/flag/tiles") return;
+    let message;
+    try {
+      message = JSON.parse(textDecoder.decode(data));
+    } catch (error) {
+      page.lastError = `${topic}: not JSON (${error.message})`;
+      return;
+    }
+    onJsonMessage(page, parts, topic, message);
+  });
+  connection.on("parameterValues", (values) => onParameterValues(page, parts, values));
+  connection.on("status", (status) => {
+    if (status.level >= 2) page.lastError = status.message;
+    if (status.level >= 1) page.toast(status.message, status.level >= 2 ? "error" : "warning");
+  });
+  connection.on("error", (text) => (page.lastError = text));
+}
+
+/// One message of a JSON channel, to the parts that show it.
+function onJsonMessage(page, parts, topic, message) {
+  switch (topic) {
+    case "/flag/state":
+      page.state = message;
+      parts.windPanel.updateState(message);
+      parts.plots.addState(message);
+      parts.timelinePanel.tick(message.sim_time ?? null);
+      break;
+    case "/flag/status":
+      page.status = message;
+      parts.plots.addStatus(message, page.view.shownFps());
+      break;
+    case "/flag/params":
+      onParamsTable(page, parts, readParamsTable(message));
+      break;
+    case "/flag/timeline":
+      page.timeline = readTimeline(message, page.state?.sim_time ?? null);
+      parts.timelinePanel.update(page.timeline);
+      break;
+    case "/flag/camera":
+      page.camera = message;
+      parts.cameraPanel.update(message);
+      break;
+    case "/flag/acks":
+      page.lastAck = message;
+      parts.statusBar.setAck(message);
+      break;
+  }
+}
+
+/// A new parameter table: the panel follows; a new set of names is subscribed to.
+function onParamsTable(page, parts, params) {
+  const names = params.map((p) => p.name).join(",");
+  const known = page.params.map((p) => p.name).join(",");
+  page.params = params;
+  parts.paramPanel.update(params);
+  if (names !== known) page.connection.subscribeParameters(params.map((p) => p.name));
+}
+
+/// Protocol parameter values: the panel and the page's table both take them.
+function onParameterValues(page, parts, values) {
+  for (const { name, value } of values) {
+    const parameter = page.params.find((p) => p.name === name);
+    if (parameter && value !== undefined) parameter.value = readValue(parameter, value);
+  }
+  parts.paramPanel.onParameterValues(values);
+}
+
+start().catch((error) => {
+  console.error(error);
+  document.body.prepend(Object.assign(document.createElement("pre"), { className: "fatal", textContent: `The page failed to start: ${error.message}` }));
+});

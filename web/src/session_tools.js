@@ -1,0 +1,87 @@
+// Snapshot and record.
+//
+//   Snapshot --(the picture's frame hash checked)--> the canvas as frame-ID.png, downloaded
+//   Record   --`/flag/record` start--> polled with status each second --stop--> a download link to
+//            its `url`, with the page's token
+import { el, formatBytes, formatNumber } from "./dom.js";
+
+const kPollPeriod = 1000;  ///< ms between record status polls
+
+export class SessionTools {
+  /// `frame()` returns { id, hashOk }; `pngBlob()` the picture as PNG; `withToken(url)`.
+  constructor({ container, connection, frame, pngBlob, withToken, toast }) {
+    this.connection = connection;
+    this.frame = frame;
+    this.pngBlob = pngBlob;
+    this.withToken = withToken;
+    this.toast = toast;
+    this.recording = false;
+    this.pollTimer = null;
+    this.snapshotButton = el("button", { type: "button", title: "download the picture as PNG (only a frame whose hash checked)", onclick: () => this.snapshot() }, "Snapshot");
+    this.recordButton = el("button", { type: "button", class: "record", title: "record every channel of the server to an LCM log", onclick: () => this.toggleRecord() }, "Record");
+    this.recordText = el("span", { class: "record-text" });
+    this.download = el("a", { class: "download", hidden: true });
+    container.append(this.snapshotButton, this.recordButton, this.recordText, this.download);
+    this.updateFrame();
+  }
+
+  /// Called on each frame shown: the snapshot is possible only with a checked frame.
+  updateFrame() {
+    const frame = this.frame();
+    this.snapshotButton.disabled = !frame.hashOk;
+  }
+
+  async snapshot() {
+    const frame = this.frame();
+    if (!frame.hashOk) {
+      this.toast("Snapshot: the picture is not a checked frame yet");
+      return;
+    }
+    const blob = await this.pngBlob();
+    const url = URL.createObjectURL(blob);
+    const link = el("a", { href: url, download: `flagsim-frame-${frame.id}.png` });
+    document.body.append(link);
+    link.click();
+    link.remove();
+    setTimeout(() => URL.revokeObjectURL(url), 10000);
+  }
+
+  toggleRecord() {
+    this.recordButton.disabled = true;
+    this.connection.call("/flag/record", { action: this.recording ? "stop" : "start" }).then(
+      (answer) => this.showRecord(answer),
+      (error) => {
+        this.recordText.textContent = `record: ${error.message}`;
+        this.recordText.className = "record-text error";
+      },
+    ).finally(() => (this.recordButton.disabled = false));
+  }
+
+  /// A `/flag/record` answer: { recording, file, url, events, bytes, seconds, error }.
+  showRecord(answer) {
+    this.recording = Boolean(answer?.recording);
+    this.recordButton.textContent = this.recording ? "Stop" : "Record";
+    this.recordButton.classList.toggle("active", this.recording);
+    const figures = `${formatNumber(answer?.seconds ?? 0, 3)} s · ${answer?.events ?? 0} events · ${formatBytes(answer?.bytes ?? 0)}`;
+    this.recordText.className = `record-text${answer?.error ? " error" : ""}`;
+    this.recordText.textContent = answer?.error ? `record: ${answer.error}` : this.recording ? `● ${figures}` : answer?.url ? figures : "";
+    this.showDownload(this.recording ? "" : answer?.url, answer?.file);
+    clearTimeout(this.pollTimer);
+    if (this.recording) this.pollTimer = setTimeout(() => this.poll(), kPollPeriod);
+  }
+
+  poll() {
+    this.connection.call("/flag/record", { action: "status" }).then((answer) => this.showRecord(answer), () => {
+      this.pollTimer = setTimeout(() => this.poll(), kPollPeriod);
+    });
+  }
+
+  showDownload(url, file) {
+    this.download.hidden = !url;
+    if (!url) return;
+    this.download.href = this.withToken(url);
+    const name = String(file || url).split("/").pop();
+    this.download.textContent = `Download ${name}`;
+    this.download.setAttribute("download", name);
+  }
+}

@@ -1,0 +1,46 @@
+// The status bar: connection, server, frame id, frames shown per second, hash ok, last ACK.
+//
+//   connection state, serverInfo, each frame shown, /flag/acks --> one line of fields
+import { el, formatNumber } from "./dom.js";
+
+export class StatusBar {
+  constructor(container) {
+    this.connection = el("span", { class: "field connection disconnected" }, "connecting …");
+    this.server = el("span", { class: "field server" }, "–");
+    this.frame = el("span", { class: "field frame" }, "frame –");
+    this.fps = el("span", { class: "field fps" }, "– fps");
+    this.hash = el("span", { class: "field hash" }, "hash –");
+    this.ack = el("span", { class: "field ack" }, "no ACK yet");
+    container.append(this.connection, this.server, this.frame, this.fps, this.hash, this.ack);
+  }
+
+  setConnection(connected, text) {
+    this.connection.className = `field connection ${connected ? "connected" : "disconnected"}`;
+    this.connection.textContent = text;
+  }
+
+  setServer(name) {
+    this.server.textContent = name || "–";
+    this.server.title = "the gateway's serverInfo name";
+  }
+
+  /// The frame shown: its id, size, step and whether its hash checked.
+  setFrame(image) {
+    this.frame.textContent = `frame ${image.frameId} · ${image.width}×${image.height} · step ${image.step}`;
+    this.hash.textContent = image.hashOk ? "hash ok" : "hash mismatch";
+    this.hash.className = `field hash ${image.hashOk ? "ok" : "bad"}`;
+    this.hash.title = `frame hash ${image.frameHash}`;
+  }
+
+  setFps(fps) {
+    this.fps.textContent = `${formatNumber(fps, 3)} fps shown`;
+  }
+
+  /// A flagsim.Ack: { client_id, sequence, channel, accepted, reason, step }.
+  setAck(ack) {
+    const verdict = ack.accepted ? `accepted at step ${ack.step}` : `rejected: ${ack.reason}`;
+    this.ack.textContent = `last ACK ${ack.channel} #${ack.sequence} ${verdict}`;
+    this.ack.title = `${ack.client_id} #${ack.sequence} ${ack.channel}: ${ack.accepted ? "accepted" : "rejected"}${ack.reason ? ` (${ack.reason})` : ""}`;
+    this.ack.className = `field ack ${ack.accepted ? "ok" : "bad"}`;
+  }
+}
