@@ -171,20 +171,21 @@ int main(int argc, char** argv) {
       "serve the live view to browsers and Foxglove (the Foxglove WebSocket protocol) until interrupted");
   serve->add_option("--listen", serve_options.listen, "HOST:PORT to listen on (port 0: any free one)")
       ->capture_default_str();
-  serve->add_option(
-      "--token", serve_options.token,
-      "required on every request (?token=, a bearer header, or the page's cookie); generated when "
-      "listening beyond loopback without one");
+  serve
+      ->add_option("--token", serve_options.token,
+                   "required on every request (?token=, a bearer header, or the page's cookie); generated when "
+                   "listening beyond loopback without one; from $FLAGSIM_TOKEN if set, which keeps it out of "
+                   "process listings")
+      ->envname("FLAGSIM_TOKEN");
   serve->add_option(
       "--allow-origin", serve_options.allow_origins,
       "a browser origin allowed besides the gateway's own, e.g. https://app.foxglove.dev; * for any");
   serve->add_option("--record-dir", serve_options.record_directory, "where the page's recordings go")
       ->capture_default_str();
   serve->footer(
-      "Commands from browsers go out as WIND, PARAM, CAMERA, KEYFRAME and REFRESH and are answered with the\n"
-      "server's ACK; --timeout is how long the gateway waits for one. The protocol, channels and services "
-      "are\n"
-      "in docs/live-view.md.");
+      "Commands from browsers go out as WIND, PARAM, CAMERA, KEYFRAME and REFRESH and are answered with\n"
+      "the server's ACK; --timeout is how long the gateway waits for one. The protocol, channels and\n"
+      "services are in docs/live-view.md.");
 
   try {
     app.parse(argc, argv);

@@ -49,6 +49,7 @@ async function follower(topics) {
 /** Server and gateway over the next `seconds`: STATUS means, the gateway's CPU share and memory. */
 async function window(monitor) {
   monitor.history["/flag/status"] = [];
+  monitor.history["/gateway/status"] = [];
   const start = monitor.latest["/gateway/status"];
   await sleep(seconds * 1000);
   const statuses = monitor.history["/flag/status"];
@@ -58,7 +59,9 @@ async function window(monitor) {
     real_time_factor: mean(statuses.map((s) => s.real_time_factor)),
     bus_bytes_per_second: mean(statuses.map((s) => s.bytes_per_second)),
     gateway_cpu: (end.cpu_seconds - start.cpu_seconds) / (end.uptime - start.uptime),
+    gateway_bytes_per_second: mean(monitor.history["/gateway/status"].slice(-seconds).map((g) => g.bytes_per_second)),
     gateway_resident_mb: end.resident_bytes / 1e6,
+    clients_dropped: end.clients_dropped - start.clients_dropped,
     per_client_bytes: end.per_client.map((c) => c.bytes_per_second),
     per_client_skipped: end.per_client.map((c) => c.frames_skipped),
   };
@@ -133,9 +136,9 @@ monitor.close();
 
 const row = (name, r) => [name, r.frame_rate.toFixed(1), r.real_time_factor.toFixed(3), r.shown_frame_rate?.toFixed(1) ?? "-",
   (100 * r.gateway_cpu).toFixed(1), r.gateway_resident_mb.toFixed(1),
-  r.per_client_bytes.length ? (mean(r.per_client_bytes.slice(-8)) / 1e6).toFixed(2) : "-",
+  (r.gateway_bytes_per_second / 1e6).toFixed(2), String(r.clients_dropped),
   (r.bus_bytes_per_second / 1e6).toFixed(2)];
-const table = [["clients", "server fps", "rtf", "shown fps", "gateway cpu %", "gateway MB", "MB/s per client", "bus MB/s"],
+const table = [["clients", "server fps", "rtf", "shown fps", "gateway cpu %", "gateway MB", "sent MB/s", "dropped", "bus MB/s"],
   row("none", results.none), row("1 browser", results.one), row("8 browsers", results.eight),
   row("8 readers", results.eight_readers)];
 for (const line of table) console.log(line.map((cell, i) => String(cell).padEnd(i === 0 ? 12 : 16)).join(""));

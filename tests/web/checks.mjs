@@ -2,6 +2,7 @@
 // prints "ok" or "FAIL" with what it checked, and finish() exits 1 if any failed.
 let passes = 0;
 let failures = 0;
+const started = Date.now();
 
 /** Counts one check; `detail` (anything printable) says why it failed. */
 export function check(description, condition, detail = "") {
@@ -26,9 +27,9 @@ export async function waitFor(predicate, seconds, what) {
   }
 }
 
-/** A section heading in the output. */
+/** A section heading in the output, with the seconds since the test began. */
 export function section(title) {
-  console.log(`-- ${title}`);
+  console.log(`-- ${title} (at ${((Date.now() - started) / 1000).toFixed(1)} s)`);
 }
 
 export function finish() {
