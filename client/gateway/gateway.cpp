@@ -178,8 +178,10 @@ template <class Command>
 void Gateway::Relay(int client, const std::string& channel, const Command& command,
                     std::function<void(ClientProtocol&, const json&)> reply) {
   const std::string name = channels_.Unprefixed(channel);
+  ++commands_in_flight_[client];
   relay_.Send(channel, command, options_.clock(),
               [this, client, name, reply](const CommandOutcome& outcome, int64_t sequence) {
+                if (--commands_in_flight_[client] == 0) commands_in_flight_.erase(client);
                 ClientProtocol* protocol = Client(client);
                 if (protocol == nullptr) return;  // the client left meanwhile
                 reply(*protocol, CommandResultJson(outcome, name, sequence));
@@ -191,6 +193,10 @@ void Gateway::Relay(int client, const std::string& channel, const Command& comma
 void Gateway::ServiceRequest(int client, uint32_t service, const json& request,
                              std::function<void(ClientProtocol&, const json&)> reply,
                              std::function<void(const std::string&)> fail) {
+  if (commands_in_flight_.count(client) > 0 && commands_in_flight_[client] >= kMaxCommandsInFlight) {
+    return fail("already " + std::to_string(kMaxCommandsInFlight) +
+                " commands waiting for the server's answer; send more once they are answered");
+  }
   std::string problem;
   switch (service) {
     case kWindService: {
@@ -327,6 +333,11 @@ void Gateway::SetParameters(int client, const json& parameters, const std::strin
     GetParameters(client, names, id);
   };
   if (problem.empty() && command.num_assignments == 0) problem = "setParameters: no parameters given";
+  if (problem.empty() && commands_in_flight_.count(client) > 0 &&
+      commands_in_flight_[client] >= kMaxCommandsInFlight) {
+    problem =
+        "setParameters: already " + std::to_string(kMaxCommandsInFlight) + " commands waiting for an answer";
+  }
   if (!problem.empty()) {
     if (ClientProtocol* p = Client(client)) answer(*p, {{"accepted", false}, {"reason", problem}});
     return;

@@ -64,6 +64,7 @@ class Gateway {
   static constexpr int kIncompleteBeforeRefresh = 3;  ///< frames in a row the gateway could not complete
   static constexpr double kRefreshInterval = 1.0;     ///< s between the gateway's own keyframe requests
   static constexpr size_t kAcksKept = 64;
+  static constexpr int kMaxCommandsInFlight = 32;  ///< per client: commands sent and not yet answered
 
   Gateway(Bus& bus, const Channels& channels, GatewayOptions options);
 
@@ -122,6 +123,7 @@ class Gateway {
   std::array<ChannelFeed, kChannelCount + 1> feeds_;  ///< by channel id; [0] unused
   std::array<int, kChannelCount + 1> subscribers_{};  ///< clients subscribed, by channel id
   std::map<int, GatewayClient*> clients_;
+  std::map<int, int> commands_in_flight_;  ///< by client
   int next_client_ = 1;
   std::optional<params_t> params_;  ///< the newest table
   nlohmann::json last_camera_;      ///< the newest camera published, without its frame id

@@ -309,7 +309,8 @@ TEST_F(GatewayTest, HostileMessagesAreAnsweredAndLeaveTheGatewayServing) {
       R"({"op": "setParameters", "parameters": [{"value": 1}]})",
       R"({"op": "getParameters", "parameterNames": {}})",
       R"({"op": "fetchAsset", "uri": "file:///etc/passwd", "requestId": 1})",
-      std::string(1000, '[')};
+      std::string(1000, '['),
+      std::string(100000, '[') + std::string(100000, ']')};
   for (const std::string& text : texts) client_.protocol().OnText(text);
   for (int trial = 0; trial < 2000; ++trial) {
     std::string bytes(random() % 64, '\0');
@@ -322,6 +323,19 @@ TEST_F(GatewayTest, HostileMessagesAreAnsweredAndLeaveTheGatewayServing) {
   client_.Call(kWindService, 77, R"({"velocity": [5, 0, 0]})");
   ASSERT_TRUE(RunUntil([&] { return client_.responses.count(77) > 0; }));
   EXPECT_TRUE(client_.responses[77]["accepted"]);
+}
+
+TEST_F(GatewayTest, AClientMayHaveOnlySoManyCommandsWaitingForAnswers) {
+  const int calls = Gateway::kMaxCommandsInFlight + 5;
+  for (int call = 1; call <= calls; ++call) client_.Call(kWindService, call, R"({"velocity": [5, 0, 0]})");
+  client_.Read();
+  const auto refused = client_.Texts("serviceCallFailure");
+  ASSERT_EQ(refused.size(), 5u);
+  EXPECT_NE(refused[0]["message"].get<std::string>().find("commands waiting"), std::string::npos);
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.size() == size_t(Gateway::kMaxCommandsInFlight); }));
+  client_.Call(kWindService, 100, R"({"velocity": [6, 0, 0]})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(100) > 0; }));
+  EXPECT_TRUE(client_.responses[100]["accepted"]) << "answered ones make room";
 }
 
 TEST_F(GatewayTest, TheImageAndTheSceneAreForFoxglove) {
