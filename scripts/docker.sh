@@ -74,8 +74,21 @@ pick_engine() {
   fi
 }
 
+# npm's trust, as this host has it: when the host's npm is told to trust a certificate authority
+# of its own (`npm config get cafile`: a TLS-inspecting proxy's, say), the build stage's npm,
+# which fetches the page's packages, gets the same file (npm-ca.pem in the build context, removed
+# after the build; the runtime image never sees it).
+stage_npm_ca() {
+  local cafile
+  cafile=$(npm config get cafile 2>/dev/null || true)
+  [[ -n $cafile && $cafile != null && -f $cafile ]] || return 0
+  cp "$cafile" "$repo_root/npm-ca.pem"
+  temp_paths+=("$repo_root/npm-ca.pem")
+}
+
 # ---- Docker --------------------------------------------------------------------------------------
 docker_build() {
+  stage_npm_ca
   docker build -t "$image" -f "$repo_root/docker/Dockerfile" "$repo_root"
 }
 
@@ -233,6 +246,7 @@ ensure_base() {
 buildah_build() {
   command -v buildah >/dev/null || install_packages buildah
   ensure_base
+  stage_npm_ca
   # --layers keeps each step's result, so a source change does not reinstall the toolchain.
   buildah_cmd bud --pull=never --isolation chroot --layers \
     -t "$image" -f "$repo_root/docker/Dockerfile" "$repo_root"
