@@ -54,7 +54,7 @@ json ClothTriangles(const state_t& state) {
 json PoleCylinder(const state_t& state) {
   const double height = state.pole_top[1];
   return {{"pose", IdentityPose(ZUp(state.pole_top[0], height / 2, state.pole_top[2]))},
-          {"size", {{"x", 2 * kPoleRadius}, {"y", 2 * kPoleRadius}, {"z", height}}},
+          {"size", {{"x", 2 * state.pole_radius}, {"y", 2 * state.pole_radius}, {"z", height}}},
           {"bottom_scale", 1.0},
           {"top_scale", 1.0},
           {"color", Color(0.75, 0.75, 0.78)}};

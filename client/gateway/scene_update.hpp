@@ -13,8 +13,6 @@
 
 namespace flagsim::gateway {
 
-constexpr double kPoleRadius = 0.03;  ///< m, as the renderer draws it (STATE does not carry it)
-
 /// The JSON text of a foxglove.SceneUpdate for `state`: entities "flag" and "pole" in frame
 /// "world"; empty if the state's grid does not match its positions.
 std::string SceneUpdateJson(const state_t& state);

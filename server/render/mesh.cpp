@@ -109,7 +109,7 @@ Mesh GroundMesh(float x, float z, float size) {
   return mesh;
 }
 
-RenderScene DefaultRenderScene(float pole_height, FlagDesign design) {
+RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign design) {
   RenderScene scene;
   Material cloth_front;
   cloth_front.patterned = true;
@@ -137,7 +137,7 @@ RenderScene DefaultRenderScene(float pole_height, FlagDesign design) {
   Mesh flag;
   flag.front_material = 0;
   flag.back_material = 1;
-  Mesh pole = CylinderMesh(Eigen::Vector3f::Zero(), 0.03f, pole_height, 16);
+  Mesh pole = CylinderMesh(Eigen::Vector3f::Zero(), pole_radius, pole_height, 16);
   pole.front_material = 2;
   Mesh finial = SphereMesh(Eigen::Vector3f(0, pole_height + 0.04f, 0), 0.06f, 16);
   finial.front_material = 3;

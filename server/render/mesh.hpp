@@ -46,6 +46,7 @@ Mesh GroundMesh(float x, float z, float size);
 
 /// The flag (empty until UpdateFlagMesh), its pole and finial, the ground, sun and fill light.
 /// Mesh 0 is the flag.
-RenderScene DefaultRenderScene(float pole_height, FlagDesign design = FlagDesign::kNordicCross);
+RenderScene DefaultRenderScene(float pole_height, float pole_radius = 0.03f,
+                               FlagDesign design = FlagDesign::kNordicCross);
 
 }  // namespace flagsim::render

@@ -22,6 +22,7 @@ state_t MakeStateMessage(const Session& session, int64_t utime) {
   message.width = static_cast<float>(session.scene().sim.width);
   message.height = static_cast<float>(session.scene().sim.height);
   for (int k = 0; k < 3; ++k) message.pole_top[k] = model.pole_top[k];
+  message.pole_radius = session.scene().sim.pole_radius;
   const sim::Vec3 wind = simulation.wind().Mean(state.time);
   for (int k = 0; k < 3; ++k) message.wind[k] = wind[k];
   message.wind_gust = simulation.wind().Gust(state.time);

@@ -107,13 +107,14 @@ Session::Session(const Scene& scene)
     : initial_(scene),
       scene_(AtTimelineStart(scene)),
       simulation_(scene_.sim, scene_.wind, scene.seed),
-      render_scene_(render::DefaultRenderScene(float(scene.sim.pole_height))) {}
+      render_scene_(render::DefaultRenderScene(float(scene.sim.pole_height), float(scene.sim.pole_radius))) {}
 
 Session::Session(const SessionSnapshot& snapshot)
     : initial_(snapshot.initial),
       scene_(snapshot.scene),
       simulation_(snapshot.simulation),
-      render_scene_(render::DefaultRenderScene(float(snapshot.scene.sim.pole_height))),
+      render_scene_(render::DefaultRenderScene(float(snapshot.scene.sim.pole_height),
+                                               float(snapshot.scene.sim.pole_radius))),
       substeps_segment_(snapshot.timeline_segment),
       substeps_fixed_(snapshot.substeps_fixed) {}
 
@@ -149,8 +150,8 @@ std::string Session::ApplyParams(const ParamChange& change) {
   }
   if (!problems.empty()) return problems;
 
-  if (next.sim.pole_height != scene_.sim.pole_height) {
-    render_scene_ = render::DefaultRenderScene(float(next.sim.pole_height));
+  if (next.sim.pole_height != scene_.sim.pole_height || next.sim.pole_radius != scene_.sim.pole_radius) {
+    render_scene_ = render::DefaultRenderScene(float(next.sim.pole_height), float(next.sim.pole_radius));
   }
   scene_ = next;
   simulation_.SetParams(scene_.sim);

@@ -32,6 +32,14 @@ struct SimParams {
   double bend_stiffness = 20.0;    ///< N/m, springs between nodes two apart
   double damping = 0.05;           ///< N s/m, along every spring, scaled like the stiffness
 
+  // Cloth against compression, itself, the pole and the ground.
+  double compression = 0.1;    ///< compressive stiffness of structural and shear springs, as a fraction
+                               ///< of their stiffness: cloth buckles rather than compress in its plane
+  double pole_radius = 0.03;   ///< m: the pole is a cylinder the cloth cannot enter; the hoist edge is on it
+  double pole_friction = 0.3;  ///< Coulomb friction coefficient of the cloth on the pole and the ground
+  double thickness = 0.004;    ///< m: the least distance the cloth keeps from itself, the pole and the ground
+  bool self_collision = true;  ///< the cloth does not pass through itself
+
   // Air and gravity.
   double friction = 0.2;          ///< 1/s, air friction -friction m_i v_i (seed: fraction of F)
   double wind_coefficient = 1.0;  ///< N s/m^3: face force C A n (n . w)
