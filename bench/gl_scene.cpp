@@ -252,7 +252,7 @@ void GlSceneRenderer::SetLights(const render::Lighting& lighting) const {
     const GLfloat position[4] = {source.vector[0], source.vector[1], source.vector[2], w};
     glLightfv(light, GL_AMBIENT, none.value);
     glLightfv(light, GL_DIFFUSE, colour.value);
-    glLightfv(light, GL_SPECULAR, colour.value);
+    glLightfv(light, GL_SPECULAR, source.specular ? colour.value : none.value);
     glLightfv(light, GL_POSITION, position);
     glEnable(light);
   }

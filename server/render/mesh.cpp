@@ -154,7 +154,22 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
   fill.kind = Light::kPoint;
   fill.vector = Eigen::Vector3f(3.0f, 2.5f, 5.0f);
   fill.colour = Eigen::Vector3f(0.25f, 0.25f, 0.3f);
-  scene.lighting.lights = {sun, fill};
+  // The sky and the ground light the scene from every side: the sky's blue from above, the
+  // grass's green from below, and the bright sky opposite the sun; none of them makes
+  // highlights. A surface turned from the sun still reads (a hemisphere light in three
+  // directional parts, which OpenGL's fixed pipeline draws the same way).
+  const auto diffuse_light = [](Eigen::Vector3f toward, Eigen::Vector3f colour) {
+    Light light;
+    light.vector = toward.normalized();
+    light.colour = colour;
+    light.specular = false;
+    return light;
+  };
+  const Light from_sky = diffuse_light({0, 1, 0}, {0.12f, 0.14f, 0.18f});
+  const Light from_ground = diffuse_light({0, -1, 0}, {0.10f, 0.13f, 0.08f});
+  const Light far_sky = diffuse_light({-0.3f, 0.35f, -0.88f}, {0.55f, 0.55f, 0.58f});
+  scene.lighting.ambient = Eigen::Vector3f(0.2f, 0.22f, 0.26f);
+  scene.lighting.lights = {sun, fill, from_sky, from_ground, far_sky};
   return scene;
 }
 

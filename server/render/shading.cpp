@@ -15,6 +15,7 @@ Shade ShadePoint(const Material& material, const Lighting& lighting, const Eigen
     const float lambert = n.dot(to_light);
     if (lambert <= 0) continue;
     shade.diffuse += material.diffuse * lambert * light.colour;
+    if (!light.specular) continue;
     const float highlight = n.dot((to_light + to_eye).normalized());
     if (highlight > 0)
       shade.specular += material.specular * std::pow(highlight, material.shininess) * light.colour;

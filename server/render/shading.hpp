@@ -3,7 +3,8 @@
 // At a point p with unit normal n seen from the eye e, with l the unit vector to a light and
 // h = normalize(l + v), v = normalize(e - p):
 //   diffuse  D = ambient * ka + sum_lights kd max(0, n . l) * light
-//   specular S = sum_lights ks max(0, n . h)^shininess * light   (0 where n . l <= 0)
+//   specular S = sum_lights ks max(0, n . h)^shininess * light   (0 where n . l <= 0, and for
+//                lights that only diffuse: the light of the sky and of the ground)
 // and the colour is  base * D + S,  base being the material's colour, or its pattern's texel
 // times that colour. (This is OpenGL's lighting with a separate specular colour and a
 // modulated texture, so a GL renderer can draw the same picture.)
@@ -28,6 +29,7 @@ struct Light {
   Kind kind = kDirectional;
   Eigen::Vector3f vector{0, 1, 0};  ///< directional: towards the light; point: position, m
   Eigen::Vector3f colour{1, 1, 1};  ///< linear RGB intensity
+  bool specular = true;             ///< it makes highlights (the sun); false: it only diffuses (sky, ground)
 };
 
 struct Lighting {
