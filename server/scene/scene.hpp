@@ -20,9 +20,15 @@ struct ServiceSettings {
 };
 
 struct Scene {
+  static constexpr double kMaxSettle = 60;  ///< s
+
   std::string name = "breeze";
   std::string description = "A steady breeze with light gusts.";
   uint64_t seed = 1;  ///< gust noise seed
+  /// s of simulated time the flag first settles in the scene's physics and wind, before the
+  /// session's first step and not streamed, so the session starts from the drape it falls into
+  /// (the clock back at 0); 0: it starts flat at rest. 0 .. kMaxSettle.
+  double settle = 0;
   sim::SimParams sim;
   sim::WindSettings wind;
   ServiceSettings service;

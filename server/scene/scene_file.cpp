@@ -269,6 +269,13 @@ Scene ParseScene(const std::string& text, const std::string& source) {
       const auto value = node.value<int64_t>();
       if (!value || *value < 0) throw SceneError(Where(source, node) + "seed must be an integer >= 0");
       scene.seed = static_cast<uint64_t>(*value);
+    } else if (name == "settle") {
+      const auto value = node.value<double>();
+      if (!value || !(*value >= 0 && *value <= Scene::kMaxSettle)) {
+        throw SceneError(Where(source, node) + "settle must be a number of seconds, 0 .. " +
+                         std::to_string(int(Scene::kMaxSettle)));
+      }
+      scene.settle = *value;
     } else if (name == "parameters") {
       ReadParameters(Table(node, name, source), source, &scene);
     } else if (name == "wind") {
@@ -278,8 +285,9 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     } else if (name == "timeline") {
       ReadTimeline(Table(node, name, source), source, &scene);
     } else {
-      throw SceneError(Where(source, node) + "unknown key '" + name +
-                       "'; known: name, description, seed, [parameters], [wind], [camera], [timeline]");
+      throw SceneError(
+          Where(source, node) + "unknown key '" + name +
+          "'; known: name, description, seed, settle, [parameters], [wind], [camera], [timeline]");
     }
   }
   for (const std::string& problem :

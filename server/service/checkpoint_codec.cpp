@@ -34,6 +34,7 @@ scene_t MakeSceneMessage(const Scene& scene) {
   scene_t message{};
   message.name = scene.name;
   message.seed = static_cast<int64_t>(scene.seed);
+  message.settle = scene.settle;
   WriteParameters(scene, &message.names, &message.values);
   message.num_parameters = static_cast<int32_t>(message.names.size());
   for (int k = 0; k < 3; ++k) message.wind_velocity[k] = scene.wind.velocity[k];
@@ -214,6 +215,11 @@ std::string ReadScene(const scene_t& message, const std::string& field, Scene* s
   Scene read;
   read.name = message.name;
   read.seed = static_cast<uint64_t>(message.seed);
+  if (!(message.settle >= 0 && message.settle <= Scene::kMaxSettle)) {
+    return field + ".settle: " + std::to_string(message.settle) + " is out of range; allowed 0 .. " +
+           std::to_string(int(Scene::kMaxSettle)) + " s";
+  }
+  read.settle = message.settle;
   std::string problem = ReadParameters(message.names, message.values, field + ".parameters", &read);
   if (problem.empty()) problem = Vector(field + ".wind_velocity", message.wind_velocity, &read.wind.velocity);
   read.wind.gust = message.wind_gust;

@@ -101,12 +101,26 @@ bool MayJump(const TimelineEdit& edit, bool was_playing) {
   }
 }
 
+/// The flag of `scene` at time 0: flat at rest, or, when the scene settles, as it hangs after
+/// scene.settle s of its own physics and wind. Those steps are not the session's: the clock and
+/// the wind start again at 0 from the drape, so a replay resumes from the start's checkpoint.
+FlagSimulation StartingSimulation(const Scene& scene) {
+  FlagSimulation settling(scene.sim, scene.wind, scene.seed);
+  if (scene.settle <= 0) return settling;
+  while (settling.state().time < scene.settle) settling.Step();
+  sim::SimulationSnapshot<float> start = settling.CleanSnapshot();
+  start.state.time = 0;
+  start.state.step = 0;
+  start.wind = sim::WindField(scene.wind, scene.seed).State();
+  return FlagSimulation(start);
+}
+
 }  // namespace
 
 Session::Session(const Scene& scene)
     : initial_(scene),
       scene_(AtTimelineStart(scene)),
-      simulation_(scene_.sim, scene_.wind, scene.seed),
+      simulation_(StartingSimulation(scene_)),
       render_scene_(render::DefaultRenderScene(float(scene.sim.pole_height), float(scene.sim.pole_radius))) {}
 
 Session::Session(const SessionSnapshot& snapshot)
@@ -160,7 +174,11 @@ std::string Session::ApplyParams(const ParamChange& change) {
     sim::WindSettings wind = scene_.wind;
     wind.ramp_time = 0;  // back to the scene's wind at once
     simulation_.SetWind(wind);
-    simulation_.RestartFlag();
+    if (scene_.settle > 0) {
+      simulation_.RestartFlag(StartingSimulation(scene_).state());  // the scene's drape again
+    } else {
+      simulation_.RestartFlag();
+    }
   }
   ++revision_;
   return "";

@@ -162,9 +162,14 @@ void Simulation<Real>::SetSubsteps(int substeps) {
 
 template <typename Real>
 void Simulation<Real>::RestartFlag() {
+  RestartFlag(RestState(model_));
+}
+
+template <typename Real>
+void Simulation<Real>::RestartFlag(const ClothState<Real>& pose) {
   const double time = state_.time;
   const int64_t step = state_.step;
-  state_ = RestState(model_);
+  state_ = pose;
   state_.time = time;
   state_.step = step;
   Wake();

@@ -112,6 +112,8 @@ class Simulation {
 
   /// The flag back at rest, flat, in its initial pose; time and step go on.
   void RestartFlag();
+  /// The flag back in `pose` (its positions and velocities; the same grid), time and step going on.
+  void RestartFlag(const ClothState<Real>& pose);
 
   /// The parameters in use: as set, except an integrator the guard replaced.
   const SimParams& params() const { return params_; }

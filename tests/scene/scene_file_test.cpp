@@ -69,6 +69,9 @@ TEST(SceneFile, ErrorsNameTheFileLineAndProblem) {
   EXPECT_EQ(ErrorOf("name = \n").rfind("test.toml:1:", 0), 0u);  // TOML syntax
   EXPECT_NE(ErrorOf("[parameters]\nintegrator = \"seed\"\nfriction = 2\n").find("seed integrator"),
             std::string::npos);
+  EXPECT_NE(ErrorOf("settle = -1\n").find("settle must be a number of seconds, 0 .. 60"), std::string::npos);
+  EXPECT_NE(ErrorOf("settle = \"long\"\n").find("settle must be"), std::string::npos);
+  EXPECT_EQ(ParseScene("settle = 2.5\n", "test.toml").settle, 2.5);
 }
 
 /// The error has `expected` in it.

@@ -17,6 +17,7 @@ namespace {
 /// the seed's transforms, and an image small enough to compare whole.
 Scene Busy() {
   Scene scene;
+  scene.settle = 0.2;  // the start and a reset are the drape
   scene.sim.cols = 12;
   scene.sim.rows = 9;
   scene.camera.width = 96;

@@ -39,6 +39,25 @@ TimelineEdit Operation(TimelineEdit::Operation operation, double time = 0) {
   return edit;
 }
 
+// A scene that settles starts from the drape its own physics and wind give the flat flag after
+// `settle` seconds, with the clock at 0; a reset goes back to that drape.
+TEST(Session, ASettlingSceneStartsFromItsDrapeWithTheClockAtZero) {
+  Scene scene;
+  scene.settle = 0.5;
+  Session session(scene);
+  EXPECT_EQ(session.simulation().state().time, 0);
+  EXPECT_EQ(session.simulation().state().step, 0);
+  FlagSimulation by_hand(scene.sim, scene.wind, scene.seed);  // the same half second, stepped here
+  while (by_hand.state().time < scene.settle) by_hand.Step();
+  EXPECT_EQ(session.simulation().state().x, by_hand.state().x);
+  EXPECT_EQ(session.simulation().state().vy, by_hand.state().vy);
+  EXPECT_NE(session.simulation().state().x, sim::RestState(session.simulation().model()).x);
+  for (int i = 0; i < 100; ++i) session.Step();
+  ASSERT_EQ(session.ApplyParams({true, {}}), "");
+  EXPECT_EQ(session.simulation().state().x, by_hand.state().x);
+  EXPECT_EQ(session.simulation().state().step, 100) << "the clock goes on through a reset";
+}
+
 TEST(Session, APlayingTimelineDrivesTheControlsInSimulatedTime) {
   Session session(Stiffening());
   EXPECT_EQ(session.scene().sim.stiffness, 1000);  // the timeline's start, from the first step
