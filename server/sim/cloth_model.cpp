@@ -139,7 +139,7 @@ ClothModel<Real> BuildClothModel(const SimParams& params) {
       const int i = model.index(r, c);
       model.mass[i] = Real(density * dx * dy * AreaShare(r, c, params.rows, params.cols));
       model.inverse_mass[i] = c == 0 ? Real(0) : Real(1) / model.mass[i];  // hoist edge pinned
-      model.rest_x[i] = Real(c * dx);
+      model.rest_x[i] = Real(params.pole_radius + c * dx);  // the hoist edge on the pole's surface
       model.rest_y[i] = Real(top - r * dy);
       model.rest_z[i] = Real(0);
     }

@@ -2,7 +2,8 @@
 // SimParams; the state (cloth_state.hpp) is what a step changes.
 //
 // Grid: node (r, c) has index r * cols + c; row 0 is the top edge, column 0 the hoist edge on
-// the pole. At rest the flag lies in the x-y plane: node (r, c) at (c dx, top - r dy, 0).
+// the pole. At rest the flag lies in the x-y plane: node (r, c) at (R + c dx, top - r dy, 0), the
+// hoist edge on the surface of the pole of radius R (the pole's axis is the y axis).
 // Faces: each cell (r, c) is cut into two triangles,
 //   upper (r, c) (r+1, c) (r, c+1)  and  lower (r+1, c) (r+1, c+1) (r, c+1),
 // both wound so that their normal is +z at rest.

@@ -10,7 +10,7 @@ namespace {
 
 bool GridChanged(const SimParams& a, const SimParams& b) {
   return a.cols != b.cols || a.rows != b.rows || a.width != b.width || a.height != b.height ||
-         a.mass != b.mass || a.pole_height != b.pole_height;
+         a.mass != b.mass || a.pole_height != b.pole_height || a.pole_radius != b.pole_radius;
 }
 
 constexpr int kMaxSubsteps = 1 << 16;
@@ -71,7 +71,7 @@ int SubstepsForRange(const SimParams& least, const SimParams& most) {
 template <typename Real>
 Simulation<Real>::Simulation(const SimParams& params, const WindSettings& wind, uint64_t seed)
     : params_(params), wind_(wind, seed) {
-  model_ = BuildClothModel<Real>(params_);
+  BuildModel();
   ChooseIntegrator();
   state_ = RestState(model_);
   Checkpoint();
@@ -86,7 +86,7 @@ Simulation<Real>::Simulation(const SimulationSnapshot<Real>& snapshot)
       recoveries_(snapshot.recoveries),
       good_steps_(snapshot.good_steps),
       sleeping_(snapshot.sleeping) {
-  model_ = BuildClothModel<Real>(params_);
+  BuildModel();
   if (state_.num_nodes() != model_.num_nodes())
     throw std::invalid_argument("snapshot: the state has " + std::to_string(state_.num_nodes()) +
                                 " nodes, its parameters make " + std::to_string(model_.num_nodes()));
@@ -104,6 +104,12 @@ SimulationSnapshot<Real> Simulation<Real>::CleanSnapshot() {
 }
 
 template <typename Real>
+void Simulation<Real>::BuildModel() {
+  model_ = BuildClothModel<Real>(params_);
+  self_collision_ = std::make_unique<SelfCollision<Real>>(model_);
+}
+
+template <typename Real>
 void Simulation<Real>::ChooseIntegrator() {
   integrator_ = MakeIntegrator<Real>(params_.integrator);
   substeps_ = SubstepsFor(params_);
@@ -115,7 +121,7 @@ void Simulation<Real>::SetParams(const SimParams& params) {
   params_ = params;
   Wake();
   if (regrid) {
-    model_ = BuildClothModel<Real>(params_);
+    BuildModel();
   } else {
     SetSpringConstants(params_, &model_);
   }
@@ -234,7 +240,13 @@ void Simulation<Real>::Advance() {
   const int n = substeps();
   const double start = state_.time, h = params_.dt / n;
   const StepContext<Real> context{model_, params_, wind_, evaluator_};
-  for (int i = 0; i < n; ++i) integrator_->Substep(context, h, &state_);
+  const Obstacles obstacles = Obstacles::Of(params_);
+  if (params_.self_collision) step_start_ = state_;
+  for (int i = 0; i < n; ++i) {
+    integrator_->Substep(context, h, &state_);
+    PushOutOfObstacles(model_, obstacles, &state_);
+  }
+  if (params_.self_collision) self_collision_->Resolve(model_, params_, params_.dt, step_start_, &state_);
   state_.time = start + params_.dt;
   ++state_.step;
 }

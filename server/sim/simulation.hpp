@@ -3,7 +3,12 @@
 // One step (dt):
 //   checkpoint   every kCheckpointInterval steps, and whenever parameters or wind change
 //   advance      n substeps of the integrator: n from its stability limit (with a safety
-//                factor) or the `substeps` parameter, times the guard's factor
+//                factor) or the `substeps` parameter, times the guard's factor; after each, nodes
+//                in the pole or the ground are put back on its surface (obstacles.hpp)
+//   collide      with self_collision, the step's motion is corrected so that the cloth does not
+//                pass through itself (self_collision.hpp). Both corrections keep what the
+//                integrator carries between substeps: a lag of one substep at a contact, as
+//                with SetControls, rather than a new factorisation at every touch.
 //   guard        a state with non-finite values, a runaway node or a runaway spring rolls back
 //                to the checkpoint and redoes the lost steps with twice the substeps; past
 //                kMaxGuardFactor an explicit integrator gives way to an unconditionally stable
@@ -24,6 +29,7 @@
 #include "cloth_state.hpp"
 #include "forces.hpp"
 #include "integrator.hpp"
+#include "self_collision.hpp"
 #include "sim_params.hpp"
 #include "wind_field.hpp"
 
@@ -124,9 +130,12 @@ class Simulation {
   int64_t recoveries() const { return recoveries_; }
   const GuardEvent& last_guard_event() const { return last_event_; }
   bool sleeping() const { return sleeping_; }
+  /// What self-collision did in the last step (all zero when it is off).
+  const SelfCollisionStats& self_collision_stats() const { return self_collision_->stats(); }
   uint64_t Hash() const { return StateHash(state_); }
 
  private:
+  void BuildModel();
   void ChooseIntegrator();
   void Advance();
   /// "" if the state is sound, else what is wrong with it; `fastest` gets the top node speed.
@@ -139,7 +148,9 @@ class Simulation {
 
   SimParams params_;
   ClothModel<Real> model_;
+  std::unique_ptr<SelfCollision<Real>> self_collision_;  ///< built with the model
   ClothState<Real> state_;
+  ClothState<Real> step_start_;  ///< the state before the step being taken
   ClothState<Real> checkpoint_;
   WindField wind_;
   ForceEvaluator<Real> evaluator_;

@@ -1,0 +1,143 @@
+// The cloth never passes through itself: after each step, the motion of every node from its
+// start x0 to its end x1 is corrected so that no point crosses a triangle and no edge crosses
+// an edge (Bridson, Fedkiw and Anderson 2002, "Robust treatment of collisions, contact and
+// friction for cloth animation", in the form of a correction after the step).
+//
+// With v = (x1 - x0) / dt each node's average velocity over the step:
+//   cull       the mesh is cut into patches (cloth_patches.hpp). A patch, or two neighbouring
+//              patches together, whose triangles' normals stay within a cone of half-angle
+//              below 90 degrees over the whole step cannot meet itself (Volino and
+//              Magnenat-Thalmann 1994, the normal-cone criterion), so it is skipped; two
+//              patches that are not neighbours are examined only if their boxes, swept over
+//              the step and grown by the thickness h, overlap.
+//   proximity  point-triangle and edge-edge pairs closer than h at x0 and approaching get an
+//              impulse that stops the approach and parts them by a tenth of the overlap per
+//              step: a folded flag lies on itself h apart.
+//   contact    each pair whose straight paths meet within the step (collision_geometry.hpp)
+//              gets an impulse along the contact normal that stops the approach, with a small
+//              separating speed; repeated, since an impulse can cause other contacts.
+//   fail-safe  after kImpulseRounds rounds, the nodes of any contact left keep their start
+//              positions for this step (x1 = x0), and so do those the impulses would put in
+//              the pole or the ground: the start had no crossings, so neither does the end.
+// An impulse J along n on a pair with weights k_i (point-triangle: 1, -w_a, -w_b, -w_c;
+// edge-edge: 1 - s, s, -(1 - t), -t) changes v_i by k_i J n / m_i, pinned and held nodes
+// excepted, and the pair's relative normal speed by J sum k_i^2 / m_i.
+//
+// Every correction changes x1 and the end velocity by the same dv (x1 += dt dv, v1 += dv), so
+// a step where nothing comes close is left unchanged bit for bit. The passes run in a fixed
+// order on one thread: the same state gives the same result at any thread count.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "cloth_mesh.hpp"
+#include "cloth_model.hpp"
+#include "cloth_patches.hpp"
+#include "cloth_state.hpp"
+#include "collision_geometry.hpp"
+#include "obstacles.hpp"
+#include "sim_params.hpp"
+
+namespace flagsim::sim {
+
+/// What the last Resolve did.
+struct SelfCollisionStats {
+  int patch_pairs = 0;  ///< pairs of patches examined (a patch with itself counts once)
+  int candidates = 0;   ///< primitive pairs whose swept boxes overlap, first round
+  int contacts = 0;     ///< impulses applied, all rounds
+  int rounds = 0;
+  int held = 0;   ///< nodes kept at their start positions by the fail-safe
+  int moved = 0;  ///< nodes whose step was corrected
+};
+
+template <typename Real>
+class SelfCollision {
+ public:
+  static constexpr int kPatchCells = 2;             ///< cells along a patch's side
+  static constexpr int kImpulseRounds = 6;          ///< rounds of impulses before the fail-safe
+  static constexpr double kContactTolerance = 0.1;  ///< of h: how near counts as a contact
+  static constexpr double kSpacingShare = 0.25;     ///< h is at most this share of the grid spacing
+
+  explicit SelfCollision(const ClothModel<Real>& model);
+
+  /// Corrects `state` (the end of a step of dt from positions `start`) as above. Returns
+  /// whether anything changed.
+  bool Resolve(const ClothModel<Real>& model, const SimParams& params, double dt,
+               const ClothState<Real>& start, ClothState<Real>* state);
+
+  const SelfCollisionStats& stats() const { return stats_; }
+
+ private:
+  struct Pair {
+    bool edges = false;  ///< edge-edge; else point-triangle
+    int a = 0, b = 0;    ///< node and triangle, or two edges
+  };
+  struct Box {
+    Point lo, hi;
+    bool Overlaps(const Box& other) const {
+      return (lo.array() <= other.hi.array()).all() && (other.lo.array() <= hi.array()).all();
+    }
+  };
+
+  void Load(const ClothModel<Real>& model, const ClothState<Real>& start, const ClothState<Real>& end);
+  /// The directions a surface's normals take: within half_angle rad of the unit axis.
+  struct Cone {
+    Point axis;
+    double half_angle = 0;
+  };
+  struct TriangleNormal {
+    Point start, end;    ///< unnormalised, at the step's start and end
+    double longest = 0;  ///< m^2, the longer of the two
+    double curl = 0;     ///< m^2, >= |du x dv|: bounds how far the normal strays between them
+  };
+
+  void SweptBoxes();
+  void TriangleNormals();
+  Cone PatchCone(const ClothPatch& patch) const;
+  void RegionBounds();
+  static Cone Union(const Cone& a, const Cone& b);
+  void SelfPairs(int region, std::vector<std::array<int, 2>>* pairs) const;
+  void CrossPairs(int a, int b, std::vector<std::array<int, 2>>* pairs) const;
+  bool Separated(int p, int q) const;
+  void Candidates(const std::vector<std::array<int, 2>>& patch_pairs);
+  void AddPairs(int p, int q);
+  void Proximity();
+  int Contacts(bool hold);
+  bool HoldThoseInObstacles();
+  std::array<int, 4> Nodes(const Pair& pair) const;
+  bool Immobile(const std::array<int, 4>& nodes) const;
+  bool Push(const std::array<int, 4>& nodes, const std::array<double, 4>& weights, const Point& normal,
+            double speed);
+  void Hold(int node);
+  /// Positions, one row per node: x, y, z in columns, so that each coordinate is contiguous.
+  using Positions = Eigen::Array<double, Eigen::Dynamic, 3>;
+  Point Start(int node) const { return start_.row(node).transpose().matrix(); }
+  Point End(int node) const { return end_.row(node).transpose().matrix(); }
+  Point Integrated(int node) const { return integrated_.row(node).transpose().matrix(); }
+  bool Moved(int node) const { return (end_.row(node) != integrated_.row(node)).any(); }
+  Point Velocity(int node) const { return (End(node) - Start(node)) / dt_; }
+
+  int cols_ = 0;
+  ClothMesh mesh_;
+  ClothPatches patches_;
+  Obstacles obstacles_;
+  double thickness_ = 0, dt_ = 0;
+
+  // Per step, per node: positions at the start and end (as corrected), the end as integrated,
+  // inverse mass (0 when pinned or held), swept box grown by h.
+  Positions start_, end_, integrated_;
+  std::vector<double> inverse_mass_;
+  std::vector<Box> node_box_, triangle_box_, edge_box_;
+  std::vector<int> leaf_region_;                 ///< each patch's region
+  std::vector<Box> region_box_;                  ///< per region, its nodes' swept boxes together
+  std::vector<Cone> region_cone_;                ///< per region; half_angle >= pi/2: it may meet itself
+  Eigen::VectorXd moved_by_;                     ///< m, per node, |x1 - x0|
+  std::vector<TriangleNormal> normals_;          ///< per triangle
+  std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
+  std::vector<Pair> candidates_;
+  std::vector<int> near_;  ///< scratch: one patch's primitives inside another's box
+  SelfCollisionStats stats_;
+};
+
+}  // namespace flagsim::sim

@@ -1,0 +1,128 @@
+#include "sim/self_collision.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "scene/scene_file.hpp"
+#include "sim/simulation.hpp"
+#include "sim/triangle_crossings.hpp"
+
+namespace flagsim::sim {
+namespace {
+
+using testing::CrossingTrianglePairs;
+
+TEST(CollisionGeometry, ClosestPointsOnATriangleAndTwoSegments) {
+  const Point a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  EXPECT_TRUE(ClosestOnTriangle({0.25, 0.25, 1}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.25, 0.25)));
+  EXPECT_TRUE(ClosestOnTriangle({2, -1, 0}, a, b, c).isApprox(Eigen::Vector3d(0, 1, 0)));
+  EXPECT_TRUE(ClosestOnTriangle({1, 1, 0}, a, b, c).isApprox(Eigen::Vector3d(0, 0.5, 0.5)));
+  const SegmentParameters crossing = ClosestOnSegments({0, 0, 0}, {2, 0, 0}, {0.5, -1, 1}, {0.5, 1, 1});
+  EXPECT_DOUBLE_EQ(crossing.s, 0.25);
+  EXPECT_DOUBLE_EQ(crossing.t, 0.5);
+}
+
+TEST(CollisionGeometry, APointThroughATriangleMeetsItWhenItReachesThePlane) {
+  const Point a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  const Primitives through{{Point{0.2, 0.2, 0.3}, a, b, c}, {Point{0.2, 0.2, -0.1}, a, b, c}};
+  const std::optional<double> when = PointTriangleContact(through, 1e-6);
+  ASSERT_TRUE(when.has_value());
+  EXPECT_NEAR(*when, 0.75, 1e-9);
+  const Primitives beside{{Point{1.2, 1.2, 0.3}, a, b, c}, {Point{1.2, 1.2, -0.1}, a, b, c}};
+  EXPECT_FALSE(PointTriangleContact(beside, 1e-6).has_value());
+}
+
+TEST(CollisionGeometry, TwoEdgesThatPassThroughEachOtherMeet) {
+  // One edge along x at z = 0.2 falls to z = -0.2 through a fixed edge along y.
+  const Primitives through{{Point{-1, 0, 0.2}, Point{1, 0, 0.2}, Point{0, -1, 0}, Point{0, 1, 0}},
+                           {Point{-1, 0, -0.2}, Point{1, 0, -0.2}, Point{0, -1, 0}, Point{0, 1, 0}}};
+  const std::optional<double> when = EdgeEdgeContact(through, 1e-6);
+  ASSERT_TRUE(when.has_value());
+  EXPECT_NEAR(*when, 0.5, 1e-9);
+  Primitives apart = through;
+  for (Point& p : apart.start) p.x() += p.y() == 0 ? 5 : 0;  // the moving edge shifted clear
+  for (Point& p : apart.end) p.x() += p.y() == 0 ? 5 : 0;
+  EXPECT_FALSE(EdgeEdgeContact(apart, 1e-6).has_value());
+}
+
+TEST(TriangleCrossings, FindTheCrossingOfTwoTrianglesAndNothingInAFlatSheet) {
+  const std::vector<std::array<int, 3>> triangles{{0, 1, 2}, {3, 4, 5}};
+  std::vector<double> x{0, 1, 0, 0.2, 0.2, 0.2}, y{0, 0, 1, 0.2, 0.3, 0.2}, z{0, 0, 0, -1, 1, 1};
+  EXPECT_EQ(CrossingTrianglePairs(triangles, x, y, z), 1);
+  z = {0, 0, 0, 0.5, 1, 1};
+  EXPECT_EQ(CrossingTrianglePairs(triangles, x, y, z), 0);
+  const ClothMesh mesh = BuildClothMesh(8, 6);
+  const ClothModel<float> model = BuildClothModel<float>(SimParams{.cols = 8, .rows = 6});
+  EXPECT_EQ(CrossingTrianglePairs(mesh.triangles, model.rest_x, model.rest_y, model.rest_z), 0);
+}
+
+/// Steps the preset for `seconds` and checks every STATE (60 per second): no node in the pole or
+/// below the ground, no crossing pair of triangles.
+void ExpectNoCrossings(const std::string& preset, double seconds) {
+  const Scene scene = LoadScene(preset);
+  Simulation<float> simulation(scene.sim, scene.wind, scene.seed);
+  const ClothMesh mesh = BuildClothMesh(scene.sim.cols, scene.sim.rows);
+  // The hoist edge lies on the pole's surface: at its radius as a float rounds it.
+  const double radius = double(float(scene.sim.pole_radius)), top = scene.sim.pole_height;
+  const int steps_per_state = int(std::lround(1 / (scene.service.state_rate * scene.sim.dt)));
+  int states = 0, worst = 0;
+  double nearest_axis = INFINITY, lowest = INFINITY;
+  while (simulation.state().time < seconds) {
+    for (int i = 0; i < steps_per_state; ++i) simulation.Step();
+    const ClothState<float>& state = simulation.state();
+    for (int i = 0; i < state.num_nodes(); ++i) {
+      if (state.y[i] < top)
+        nearest_axis = std::min(nearest_axis, std::hypot(double(state.x[i]), double(state.z[i])));
+      lowest = std::min(lowest, double(state.y[i]));
+    }
+    const int crossings = CrossingTrianglePairs(mesh.triangles, state.x, state.y, state.z);
+    worst = std::max(worst, crossings);
+    EXPECT_EQ(crossings, 0) << preset << " at " << state.time << " s";
+    if (crossings > 0 && ++states > 5) break;  // enough said
+  }
+  EXPECT_GE(nearest_axis, radius) << preset << ": a node inside the pole";
+  EXPECT_GE(lowest, 0.0) << preset << ": a node below the ground";
+  EXPECT_EQ(simulation.recoveries(), 0) << preset;
+  std::printf("%s: nearest the pole's axis %.4f m (radius %.3f), lowest %.3f m, worst %d crossing pairs\n",
+              preset.c_str(), nearest_axis, radius, lowest, worst);
+}
+
+TEST(SelfCollision, TheBreezeNeverCrossesItself) { ExpectNoCrossings("breeze", 10); }
+TEST(SelfCollision, CalmAirNeverTakesTheFlagIntoThePoleOrThroughItself) { ExpectNoCrossings("calm", 10); }
+TEST(SelfCollision, AGaleNeverTakesTheFlagIntoThePoleOrThroughItself) { ExpectNoCrossings("gale", 10); }
+
+TEST(SelfCollision, AStepWhereNothingIsNearIsLeftAsItWasBitForBit) {
+  const Scene scene = LoadScene("breeze");
+  SimParams without = scene.sim;
+  without.self_collision = false;
+  Simulation<float> with_collisions(scene.sim, scene.wind, scene.seed),
+      plain(without, scene.wind, scene.seed);
+  int compared = 0;
+  for (; compared < 500; ++compared) {
+    with_collisions.Step();
+    plain.Step();
+    if (with_collisions.self_collision_stats().moved > 0) break;
+    ASSERT_EQ(with_collisions.Hash(), plain.Hash()) << "step " << compared;
+  }
+  EXPECT_GE(compared, 100) << "the breeze touched itself within its first steps";
+}
+
+TEST(Obstacles, AFlagWithoutStiffnessOutOfItsPlaneFallsOntoTheGroundAndLiesThere) {
+  Scene scene = LoadScene("hanging");
+  scene.sim.pole_height = 1.2;  // the flag's foot 0.18 m above the ground
+  scene.sim.shear_stiffness = 0;
+  scene.sim.bend_stiffness = 0;
+  Simulation<float> simulation(scene.sim, scene.wind, scene.seed);
+  double lowest = INFINITY;
+  while (simulation.state().time < 5) {
+    simulation.Step();
+    for (float y : simulation.state().y) lowest = std::min(lowest, double(y));
+  }
+  EXPECT_GE(lowest, 0.0);
+  EXPECT_LE(lowest, scene.sim.thickness);  // it reached the ground and rests on it
+}
+
+}  // namespace
+}  // namespace flagsim::sim
