@@ -10,7 +10,7 @@ namespace {
 
 bool GridChanged(const SimParams& a, const SimParams& b) {
   return a.cols != b.cols || a.rows != b.rows || a.width != b.width || a.height != b.height ||
-         a.mass != b.mass || a.pole_height != b.pole_height;
+         a.mass != b.mass || a.pole_height != b.pole_height || a.imperfection != b.imperfection;
 }
 
 constexpr int kMaxSubsteps = 1 << 16;
