@@ -146,6 +146,9 @@ ParameterTable::ParameterTable() {
       Real("damping", "N s/m", 0, 100, &SimParams::damping, "damping along every spring"),
       Real("compression", "", 0, 1, &SimParams::compression,
            "compressive stiffness of structural and shear springs as a fraction of their stiffness"),
+      Real("imperfection", "m", 0, 0.05, &SimParams::imperfection,
+           "largest out-of-plane departure of the rest state from a flat sheet, which buckling grows "
+           "from; a change rebuilds the flag"),
       Real("pole_radius", "m", 0.005, 0.5, &SimParams::pole_radius,
            "radius of the pole: a cylinder the cloth cannot enter, the hoist edge on its surface"),
       Real("pole_friction", "", 0, 2, &SimParams::pole_friction,

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "rest_imperfection.hpp"
+
 namespace flagsim::sim {
 namespace {
 
@@ -91,6 +93,14 @@ double PowerIterationEigenvalue(const ClothModel<Real>& model, SpringMatrix matr
   return estimate;
 }
 
+/// The compressed spring's stiffness as a fraction of the stretched one's (Choi and Ko 2002,
+/// "Stable but responsive cloth": cloth resists compression far less than stretch, and buckles).
+/// Bend springs keep their stiffness: they are the sheet's bending model, and a bending sheet
+/// shortens them, so softening them in compression would scale its bending stiffness instead.
+double CompressionFraction(const SimParams& params, SpringKind kind) {
+  return kind == SpringKind::kBend ? 1.0 : params.compression;
+}
+
 }  // namespace
 
 template <typename Real>
@@ -104,6 +114,7 @@ void SetSpringConstants(const SimParams& params, ClothModel<Real>* model) {
     const double L = double(family.rest_length);
     const double scale = cell_area / (L * L);
     family.stiffness = Real(modulus * scale);
+    family.compression_stiffness = Real(CompressionFraction(params, family.kind) * modulus * scale);
     family.damping = Real(params.damping * scale);
   }
 }
@@ -144,6 +155,7 @@ ClothModel<Real> BuildClothModel(const SimParams& params) {
       model.rest_z[i] = Real(0);
     }
   }
+  AddRestImperfection(params, &model);
   return model;
 }
 

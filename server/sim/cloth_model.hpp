@@ -3,7 +3,9 @@
 //
 // Grid: node (r, c) has index r * cols + c; row 0 is the top edge, column 0 the hoist edge on
 // the pole. At rest the flag lies in the x-y plane: node (r, c) at (R + c dx, top - r dy, 0), the
-// hoist edge on the surface of the pole of radius R (the pole's axis is the y axis).
+// hoist edge on the surface of the pole of radius R (the pole's axis is the y axis), plus a small
+// smooth out-of-plane imperfection of its free nodes (rest_imperfection.hpp); rest lengths are
+// the flat grid's.
 // Faces: each cell (r, c) is cut into two triangles,
 //   upper (r, c) (r+1, c) (r, c+1)  and  lower (r+1, c) (r+1, c+1) (r, c+1),
 // both wound so that their normal is +z at rest.
@@ -28,8 +30,11 @@ struct SpringFamily {
   int dr = 0;            ///< row offset of the far node (>= 0)
   int dc = 0;            ///< column offset of the far node
   Real rest_length = 0;  ///< m
-  Real stiffness = 0;    ///< N/m, per spring
+  Real stiffness = 0;    ///< N/m, per spring, stretched (|d| >= L)
   Real damping = 0;      ///< N s/m, per spring
+  /// N/m, per spring, compressed (|d| < L): compression x stiffness for structural and shear
+  /// springs, the stiffness itself for bend springs (Choi and Ko 2002's stretch/compression split).
+  Real compression_stiffness = 0;
 
   int first_col() const { return dc < 0 ? -dc : 0; }  ///< columns whose far node exists
   int end_col(int cols) const { return dc > 0 ? cols - dc : cols; }
@@ -62,8 +67,8 @@ struct ClothModel {
 template <typename Real>
 ClothModel<Real> BuildClothModel(const SimParams& params);
 
-/// Updates the spring constants only (stiffness, damping): what a parameter change needs when
-/// the grid and masses stay.
+/// Updates the spring constants only (stiffness, compression stiffness, damping): what a
+/// parameter change needs when the grid and masses stay.
 template <typename Real>
 void SetSpringConstants(const SimParams& params, ClothModel<Real>* model);
 
@@ -71,7 +76,8 @@ void SetSpringConstants(const SimParams& params, ClothModel<Real>* model);
 /// Stiffness: Gershgorin's theorem on M^-1 K (max over nodes of sum_j 2 k_ij / m_i) is safe but
 /// about twice the true value on these grids, so it is tightened to 1.25 times a power-iteration
 /// estimate of the top eigenvalue at rest when that is lower. Damping: the same for M^-1 C, plus
-/// friction.
+/// friction. K is built from the stretched stiffnesses: compressed springs are no stiffer
+/// (compression <= 1), so the bound holds in either regime, and so does C >= ratio K below.
 struct FrequencyBound {
   double omega_squared = 0;  ///< (rad/s)^2, >= the largest eigenvalue of M^-1 K
   double damping_rate = 0;   ///< 1/s, >= the largest eigenvalue of M^-1 C

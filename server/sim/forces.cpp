@@ -17,12 +17,14 @@ constexpr float kShortest = 1e-9f;
 // parameters, not on locals), so that each loop over a grid row vectorises.
 
 /// Springs a -> a + offset for a in [begin, end):
-/// f_a = (k (|d| - L) / |d| + c (dv . d) / |d|^2) d, with d = x_b - x_a, dv = v_b - v_a.
+/// f_a = (k (|d| - L) / |d| + c (dv . d) / |d|^2) d, with d = x_b - x_a, dv = v_b - v_a, and
+/// k = stretched if |d| >= L, compressed if |d| < L (Choi and Ko 2002's stretch/compression
+/// split). The choice is a select, not a branch, so the loop still vectorises.
 template <typename Real>
 void SpringKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
                   const Real* __restrict vx, const Real* __restrict vy, const Real* __restrict vz,
                   Real* __restrict fx, Real* __restrict fy, Real* __restrict fz, int begin, int end,
-                  int offset, Real k, Real damping, Real rest) {
+                  int offset, Real stretched, Real compressed, Real damping, Real rest) {
   for (int a = begin; a < end; ++a) {
     const int b = a + offset;
     const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
@@ -30,8 +32,9 @@ void SpringKernel(const Real* __restrict x, const Real* __restrict y, const Real
     // A zero-length spring has d = 0 and so no force; the floor only keeps 1/|d| finite.
     const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortest));
     const Real closing = (vx[b] - vx[a]) * dx + (vy[b] - vy[a]) * dy + (vz[b] - vz[a]) * dz;
-    const Real scale =
-        k * (length_squared * inverse - rest) * inverse + damping * closing * inverse * inverse;
+    const Real stretch = length_squared * inverse - rest;  // m: |d| - L
+    const Real k = stretch < Real(0) ? compressed : stretched;
+    const Real scale = k * stretch * inverse + damping * closing * inverse * inverse;
     fx[a] = scale * dx;
     fy[a] = scale * dy;
     fz[a] = scale * dz;
@@ -197,7 +200,7 @@ void ForceEvaluator<Real>::SpringBand(const ClothModel<Real>& model, const Cloth
     NodeForces<Real>& out = spring_[f];
     SpringKernel(state.x.data(), state.y.data(), state.z.data(), state.vx.data(), state.vy.data(),
                  state.vz.data(), out.x.data() + pad, out.y.data() + pad, out.z.data() + pad, begin, end,
-                 offset, family.stiffness, family.damping, family.rest_length);
+                 offset, family.stiffness, family.compression_stiffness, family.damping, family.rest_length);
     for (int r = band.begin; r < last_row; ++r) {
       ZeroColumns(&out, pad + r * cols, 0, family.first_col());
       ZeroColumns(&out, pad + r * cols, family.end_col(cols), cols);

@@ -1,6 +1,7 @@
 // Forces on every node of the flag: (x, v, t) => f.
 //   gravity      m_i g
-//   springs      k (|d| - L) d^ + c ((v_b - v_a) . d^) d^ on node a, d = x_b - x_a
+//   springs      k (|d| - L) d^ + c ((v_b - v_a) . d^) d^ on node a, d = x_b - x_a; k the
+//                spring's stiffness, or its compression stiffness when |d| < L
 //   air friction -friction m_i v_i
 //   wind         C A_j n_j (n_j . w) on face j, a third to each of its nodes; w - v_face with
 //                relative wind

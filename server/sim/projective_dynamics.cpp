@@ -19,8 +19,9 @@
 // One substep, in displacements dx = x' - x (pinned nodes have dx = 0):
 //   q = x + h v, the first iterate
 //   repeat params.solver_iterations times:
-//     local   per spring a -> b: p = L (q_b - q_a) / |q_b - q_a|, the spring at rest length along
-//             the iterate, and t = k (d - p) with d = x_b - x_a, the start of the step
+//     local   per spring a -> b, e = q_b - q_a: p = l e / |e|, the spring at length l along the
+//             iterate (l = L when |e| >= L; see below when |e| < L), and t = k (d - p) with
+//             d = x_b - x_a, the start of the step
 //     global  A dx = h M v + h^2 f_ext + h^2 J t,  (J t)_a = sum of t over springs from a minus
 //             sum over springs into a;  q = x + dx
 //   x' = q, v' = dx / h
@@ -31,6 +32,18 @@
 // objective; starting from x + h v (not y) makes a state at rest after a step one the iteration
 // cannot lower, so rest states are exact force balances (f_s + f_ext = 0) even with few
 // iterations. Starting from y, a stiff flag would come to rest short of its equilibrium.
+//
+// Compressed springs (Choi and Ko 2002's stretch/compression split): a spring with |e| < L has
+// the energy E(e) = k_c (|e| - L)^2 / 2, k_c = compression k <= k, while the global step's matrix
+// is built once from k. The local step picks the target whose quadratic k |e' - p|^2 / 2 has
+// E's gradient at the iterate e: k (e - p) = k_c (|e| - L) e / |e|, so
+//   p = l e / |e|,  l = |e| - (k_c / k) (|e| - L) = L + slack (|e| - L),  slack = 1 - k_c / k,
+// a spring relaxed part of the way from its rest length to its current one. For a stretched
+// spring slack = 0 and p = L e / |e|, Liu et al.'s projection, which is the same rule. Since E's
+// Hessian is at most k I in either regime (k_c (u u^T + (1 - L / |e|)(I - u u^T)), the transverse
+// term negative), the quadratic lies above E and touches it at e; so each iteration still lowers
+// the step's objective, and converged, the step is backward Euler on the piecewise spring: the
+// fixed matrix sees k_c as the compressed spring's effective stiffness.
 // Springs and gathers run row-parallel with each node summing its own springs in a fixed order;
 // the solve runs one coordinate per thread: results do not depend on the thread count.
 #include <algorithm>
@@ -47,17 +60,20 @@ namespace {
 /// m: the shortest length divided by; a shorter spring's target is 0.
 constexpr float kShortest = 1e-9f;
 
-/// Springs a -> a + offset for a in [begin, end): t = k (d - L e / |e|), d from the step's start
-/// positions (x, y, z), e from the iterate (px, py, pz).
+/// Springs a -> a + offset for a in [begin, end): t = k (d - l e / |e|), d from the step's start
+/// positions (x, y, z), e from the iterate (px, py, pz), l = L + slack (|e| - L) when |e| < L
+/// and L otherwise (the top of this file).
 template <typename Real>
 void SpringTargetKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
                         const Real* __restrict px, const Real* __restrict py, const Real* __restrict pz,
                         Real* __restrict tx, Real* __restrict ty, Real* __restrict tz, int begin, int end,
-                        int offset, Real k, Real rest) {
+                        int offset, Real k, Real rest, Real slack) {
   for (int a = begin; a < end; ++a) {
     const int b = a + offset;
     const Real ex = px[b] - px[a], ey = py[b] - py[a], ez = pz[b] - pz[a];
-    const Real scale = rest / std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortest));
+    const Real length = std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortest));
+    const Real give = length < rest ? slack : Real(0);
+    const Real scale = (rest + give * (length - rest)) / length;
     tx[a] = k * ((x[b] - x[a]) - scale * ex);
     ty[a] = k * ((y[b] - y[a]) - scale * ey);
     tz[a] = k * ((z[b] - z[a]) - scale * ez);
@@ -94,6 +110,13 @@ void GatherKernel(const Real* __restrict tx, const Real* __restrict ty, const Re
     outy[a] += sign * ty[a + shift];
     outz[a] += sign * tz[a + shift];
   }
+}
+
+/// 1 - k_c / k: how far a compressed spring's target relaxes towards its current length; 0 for a
+/// spring with no stiffness (it has no target to move).
+template <typename Real>
+Real CompressionSlack(const SpringFamily<Real>& family) {
+  return family.stiffness > 0 ? Real(1) - family.compression_stiffness / family.stiffness : Real(0);
 }
 
 template <typename Real>
@@ -205,7 +228,8 @@ class ProjectiveDynamics : public Integrator<Real> {
       SpringTargetKernel(state.x.data(), state.y.data(), state.z.data(), iterate_.x.data(), iterate_.y.data(),
                          iterate_.z.data(), t.x.data(), t.y.data(), t.z.data(),
                          model.index(r, family.first_col()), model.index(r, family.end_col(model.cols)),
-                         family.dr * model.cols + family.dc, family.stiffness, family.rest_length);
+                         family.dr * model.cols + family.dc, family.stiffness, family.rest_length,
+                         CompressionSlack(family));
     }
   }
 

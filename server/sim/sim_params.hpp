@@ -35,6 +35,8 @@ struct SimParams {
   // Cloth against compression, itself, the pole and the ground.
   double compression = 0.1;    ///< compressive stiffness of structural and shear springs, as a fraction
                                ///< of their stiffness: cloth buckles rather than compress in its plane
+  double imperfection = 1e-3;  ///< m, out of the plane: the rest state's largest departure from a
+                               ///< flat sheet (smooth, seeded), which buckling grows from
   double pole_radius = 0.03;   ///< m: the pole is a cylinder the cloth cannot enter; the hoist edge is on it
   double pole_friction = 0.3;  ///< Coulomb friction coefficient of the cloth on the pole and the ground
   double thickness = 0.004;    ///< m: the least distance the cloth keeps from itself, the pole and the ground

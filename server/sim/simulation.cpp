@@ -10,7 +10,8 @@ namespace {
 
 bool GridChanged(const SimParams& a, const SimParams& b) {
   return a.cols != b.cols || a.rows != b.rows || a.width != b.width || a.height != b.height ||
-         a.mass != b.mass || a.pole_height != b.pole_height || a.pole_radius != b.pole_radius;
+         a.mass != b.mass || a.pole_height != b.pole_height || a.pole_radius != b.pole_radius ||
+         a.imperfection != b.imperfection;
 }
 
 constexpr int kMaxSubsteps = 1 << 16;

@@ -99,8 +99,8 @@ class Simulation {
   /// Advances one step of params().dt.
   void Step();
 
-  /// Applies new parameters between steps. A new grid (cols, rows, width, height) or mass
-  /// rebuilds the flag at rest; other changes keep its motion.
+  /// Applies new parameters between steps. A new grid (cols, rows, width, height), mass, pole
+  /// height or imperfection rebuilds the flag at rest; other changes keep its motion.
   void SetParams(const SimParams& params);
   void SetWind(const WindSettings& wind);
 

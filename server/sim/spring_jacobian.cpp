@@ -13,16 +13,19 @@ constexpr float kShortest = 1e-9f;
 
 // Every array is a __restrict parameter so that the loops over a grid row vectorise.
 
-/// Blocks of springs a -> a + offset for a in [begin, end), from h^2 k and h c.
+/// Blocks of springs a -> a + offset for a in [begin, end), from h^2 k and h c; h^2 k is the
+/// stretched spring's, or the compressed one's when |d| < L (the regime forces.cpp's law is in).
 template <typename Real>
 void BlockKernel(const Real* __restrict x, const Real* __restrict y, const Real* __restrict z,
                  Real* __restrict ux, Real* __restrict uy, Real* __restrict uz, Real* __restrict iso,
                  Real* __restrict axial, Real* __restrict axial_stiffness, int begin, int end, int offset,
-                 Real h2k, Real hc, Real rest) {
+                 Real h2k_stretched, Real h2k_compressed, Real hc, Real rest) {
   for (int a = begin; a < end; ++a) {
     const int b = a + offset;
     const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
-    const Real inverse = Real(1) / std::max(std::sqrt(dx * dx + dy * dy + dz * dz), Real(kShortest));
+    const Real length_squared = dx * dx + dy * dy + dz * dz;
+    const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortest));
+    const Real h2k = length_squared * inverse < rest ? h2k_compressed : h2k_stretched;
     const Real alpha = std::max(Real(0), Real(1) - rest * inverse);
     ux[a] = dx * inverse;
     uy[a] = dy * inverse;
@@ -142,8 +145,8 @@ void SpringJacobian<Real>::BlockRow(const ClothState<Real>& state, Real h, int r
     BlockKernel(state.x.data(), state.y.data(), state.z.data(), out.ux.data(), out.uy.data(), out.uz.data(),
                 out.iso.data(), out.axial.data(), out.axial_stiffness.data(),
                 model.index(r, family.first_col()), model.index(r, family.end_col(model.cols)),
-                family.dr * model.cols + family.dc, h * h * family.stiffness, h * family.damping,
-                family.rest_length);
+                family.dr * model.cols + family.dc, h * h * family.stiffness,
+                h * h * family.compression_stiffness, h * family.damping, family.rest_length);
   }
 }
 

@@ -7,7 +7,10 @@
 //   dF_a/dx_a = -K,  dF_a/dv_a = -D  (and the same with a and b swapped).
 // K is the exact derivative of forces.hpp's k (|d| - L) u except that the transverse term is
 // clamped at zero for compressed springs, which keeps A positive definite; D leaves out the
-// damping force's dependence on x. So every spring adds the symmetric block
+// damping force's dependence on x. k is the spring's stiffness in the regime it is in: its
+// compression stiffness when |d| < L (Choi and Ko 2002), where alpha = 0 and K = k u u^T; the
+// Jacobian of the compressed regime's law, so the step stays the linearised backward Euler step
+// of forces.hpp's forces. So every spring adds the symmetric block
 //   B = h^2 K + h D = iso I + axial u u^T,  iso = h^2 k alpha,  axial = h^2 k (1 - alpha) + h c,
 // coupling a and b like a graph Laplacian, and
 //   (A p)_a = m_a (1 + h friction) p_a + sum over springs s at a of B_s (p_a - p_other),

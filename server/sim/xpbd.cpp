@@ -8,7 +8,11 @@
 //   v = (p - x) / h;  x = p
 // Compliance 1/k makes the constraint the spring k (|d| - L) of forces.hpp and gamma its damping
 // c along the spring, so that with enough iterations a step approaches implicit Euler on the
-// same forces: first order, unconditionally stable, damping motion at large h.
+// same forces: first order, unconditionally stable, damping motion at large h. As in forces.hpp,
+// k is the spring's compression stiffness when C < 0 (Choi and Ko 2002): each projection takes
+// alpha~ and gamma of the regime the constraint is in at that moment, so the iteration's fixed
+// point is the force balance of the piecewise spring. A spring with no stiffness in a regime is
+// no constraint there (as a family with no stiffness is none at all).
 // Gauss-Seidel in a fixed order that threads cannot change: each family's springs are split
 // into two colours in which no two springs share a node (alternate columns of a family along
 // the rows, alternate rows of one down the columns; in blocks of the family's reach), so the
@@ -72,12 +76,23 @@ class Xpbd : public Integrator<Real> {
     }
   }
 
+  /// A spring's constants as a constraint in one regime: alpha~ = 1 / (k h^2), gamma = c / (k h).
+  struct Compliance {
+    bool active = false;  ///< k > 0
+    Real alpha = 0;       ///< m/(N s^2), time-scaled compliance alpha~
+    Real gamma = 0;       ///< damping ratio of the constraint
+  };
+  static Compliance ComplianceOf(Real stiffness, Real damping, Real h) {
+    if (!(stiffness > 0)) return {};
+    return {true, Real(1) / (stiffness * h * h), damping / (stiffness * h)};
+  }
+
   // The springs of one colour whose first node is in row r.
   void SolveRow(const ClothModel<Real>& model, const SpringFamily<Real>& family, Real* lambda, int r,
                 int colour, Real h, const ClothState<Real>& start) {
-    if (family.stiffness <= 0) return;
-    const Real compliance = Real(1) / (family.stiffness * h * h);
-    const Real gamma = family.damping / (family.stiffness * h);
+    const Compliance stretched = ComplianceOf(family.stiffness, family.damping, h);
+    const Compliance compressed = ComplianceOf(family.compression_stiffness, family.damping, h);
+    if (!stretched.active && !compressed.active) return;
     for (int c = family.first_col(); c < family.end_col(model.cols); ++c) {
       if (Colour(family, r, c) != colour) continue;
       const int a = model.index(r, c), b = model.index(r + family.dr, c + family.dc);
@@ -86,6 +101,9 @@ class Xpbd : public Integrator<Real> {
       Real nx = px_[b] - px_[a], ny = py_[b] - py_[a], nz = pz_[b] - pz_[a];
       const Real length = std::sqrt(nx * nx + ny * ny + nz * nz);
       if (length == Real(0)) continue;  // no direction to push along
+      const Compliance& regime = length < family.rest_length ? compressed : stretched;
+      if (!regime.active) continue;
+      const Real compliance = regime.alpha, gamma = regime.gamma;
       nx /= length;
       ny /= length;
       nz /= length;

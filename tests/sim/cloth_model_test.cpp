@@ -51,6 +51,23 @@ TEST(ClothModel, SpringConstantsFollowTheSheetModulus) {
   }
 }
 
+TEST(ClothModel, CompressedSpringsAreSofterExceptTheBendSprings) {
+  // Choi and Ko 2002's split: structural and shear springs resist compression with compression
+  // times their stiffness; bend springs, the sheet's bending, keep theirs.
+  SimParams params;
+  params.compression = 0.25;
+  ClothModel<double> model = BuildClothModel<double>(params);
+  for (const SpringFamily<double>& family : model.families) {
+    const double fraction = family.kind == SpringKind::kBend ? 1.0 : 0.25;
+    EXPECT_DOUBLE_EQ(family.compression_stiffness, fraction * family.stiffness);
+  }
+  params.compression = 1;  // as stiff in compression as in stretch: the same constant, bit for bit
+  SetSpringConstants(params, &model);
+  for (const SpringFamily<double>& family : model.families) {
+    EXPECT_EQ(family.compression_stiffness, family.stiffness);
+  }
+}
+
 TEST(ClothModel, RefiningTheGridKeepsTheSheetAsStiff) {
   // A row of n structural springs of constant k in series stretches like one of k / n; with
   // k proportional to 1 / L^2 times the cell area, the whole sheet's stiffness stays put.

@@ -33,7 +33,8 @@ SimParams StiffFlagAtSixtyHertz(IntegratorKind integrator) {
 TEST(ImplicitEuler, OneSpringStepIsTheClosedFormBackwardEulerStep) {
   // Node 1 (m = 2 kg) on a spring (k = 40 N/m, c = 0.5 N s/m, L = 1 m) to pinned node 0, moving
   // along the spring, with air friction mu: the force -k (x - L) - c v - mu m v is linear, so
-  // the linearised step is backward Euler exactly:
+  // the linearised step is backward Euler exactly (the spring as stiff in compression as in
+  // stretch, for the force to be linear through its rest length):
   //   v' (m + h c + h mu m + h^2 k) = m v - h k (x - L),  x' = x + h v'.
   const double k = 40, c = 0.5, m = 2, mu = 0.3, h = 0.05;
   ClothModel<double> model;
@@ -41,7 +42,7 @@ TEST(ImplicitEuler, OneSpringStepIsTheClosedFormBackwardEulerStep) {
   model.rows = 1;
   model.dx = 1;
   model.dy = 1;
-  model.families = {{SpringKind::kStructural, 0, 1, 1.0, k, c}};
+  model.families = {{SpringKind::kStructural, 0, 1, 1.0, k, c, k}};
   model.mass = {m, m};
   model.inverse_mass = {0, 1 / m};
   model.rest_x = {0, 1};
@@ -69,25 +70,43 @@ TEST(ImplicitEuler, OneSpringStepIsTheClosedFormBackwardEulerStep) {
   EXPECT_NEAR(state.time, 40 * h, 1e-12);
 }
 
+// Flat, the flag sags in its plane and every step loses energy. From the 1 mm imperfection it
+// buckles out of the plane as it sags; one linearised solve per step does not follow springs that
+// turn far within a 1/60 s step, so the energy may rise for a few steps (by about a tenth at
+// most, measured), but it stays bounded and by 1 s is below the start. Symplectic Euler at the
+// same step blows up.
 TEST(ImplicitEuler, StiffFlagAtLargeStepsLosesEnergyWhereSymplecticEulerBlowsUp) {
-  const SimParams params = StiffFlagAtSixtyHertz(IntegratorKind::kImplicitEuler);
+  for (const double imperfection : {0.0, 1e-3}) {
+    SimParams params = StiffFlagAtSixtyHertz(IntegratorKind::kImplicitEuler);
+    params.imperfection = imperfection;
+    const ClothModel<double> model = BuildClothModel<double>(params);
+    const WindField wind(NoWind());
+    ForceEvaluator<double> evaluator;
+    const StepContext<double> context{model, params, wind, evaluator};
+    const auto implicit = MakeIntegrator<double>(IntegratorKind::kImplicitEuler);
+    ClothState<double> state = RestState(model);
+    const double start = Energy(model, state, params.gravity);
+    double energy = start;
+    for (int step = 0; step < 60; ++step) {  // 1 s: the flag sags and swings back
+      implicit->Substep(context, params.dt, &state);
+      const double now = Energy(model, state, params.gravity);
+      ASSERT_TRUE(std::isfinite(now));
+      if (imperfection == 0) {
+        ASSERT_LE(now, energy + 1e-9) << "step " << step;
+      } else {
+        ASSERT_LE(now, 1.25 * start) << "step " << step;
+      }
+      energy = now;
+    }
+    EXPECT_LT(energy, start) << "imperfection " << imperfection;
+    EXPECT_LT(state.y[model.num_nodes() - 1], model.rest_y[model.num_nodes() - 1] - 0.01);  // it sagged
+  }
+
+  const SimParams params = StiffFlagAtSixtyHertz(IntegratorKind::kSymplecticEuler);
   const ClothModel<double> model = BuildClothModel<double>(params);
   const WindField wind(NoWind());
   ForceEvaluator<double> evaluator;
   const StepContext<double> context{model, params, wind, evaluator};
-
-  const auto implicit = MakeIntegrator<double>(IntegratorKind::kImplicitEuler);
-  ClothState<double> state = RestState(model);
-  double energy = Energy(model, state, params.gravity);
-  for (int step = 0; step < 30; ++step) {  // 0.5 s: the flag sags and swings back
-    implicit->Substep(context, params.dt, &state);
-    const double now = Energy(model, state, params.gravity);
-    ASSERT_TRUE(std::isfinite(now));
-    ASSERT_LE(now, energy + 1e-9) << "step " << step;
-    energy = now;
-  }
-  EXPECT_LT(state.y[model.num_nodes() - 1], model.rest_y[model.num_nodes() - 1] - 0.01);  // it sagged
-
   const auto symplectic = MakeIntegrator<double>(IntegratorKind::kSymplecticEuler);
   ClothState<double> explicit_state = RestState(model);
   for (int step = 0; step < 20; ++step) symplectic->Substep(context, params.dt, &explicit_state);

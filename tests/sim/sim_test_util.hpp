@@ -64,7 +64,8 @@ double KineticEnergy(const ClothModel<Real>& model, const ClothState<Real>& stat
   return energy;
 }
 
-/// Spring energy sum k (|d| - L)^2 / 2 over every spring of every family.
+/// Spring energy sum k (|d| - L)^2 / 2 over every spring of every family, k the stiffness of the
+/// spring's regime: its compression stiffness when |d| < L.
 template <typename Real>
 double SpringEnergy(const ClothModel<Real>& model, const ClothState<Real>& state) {
   double energy = 0;
@@ -75,7 +76,8 @@ double SpringEnergy(const ClothModel<Real>& model, const ClothState<Real>& state
         const double dx = double(state.x[b]) - state.x[a], dy = double(state.y[b]) - state.y[a],
                      dz = double(state.z[b]) - state.z[a];
         const double stretch = std::sqrt(dx * dx + dy * dy + dz * dz) - double(family.rest_length);
-        energy += 0.5 * double(family.stiffness) * stretch * stretch;
+        const double k = stretch < 0 ? family.compression_stiffness : family.stiffness;
+        energy += 0.5 * k * stretch * stretch;
       }
     }
   }

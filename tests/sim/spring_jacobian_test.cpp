@@ -124,13 +124,14 @@ TEST(SpringJacobian, MatrixAndRightHandSideMatchFiniteDifferences) {
 
 TEST(SpringJacobian, CompressedSpringKeepsOnlyItsAxialStiffness) {
   // One spring along x compressed to half its rest length: the exact transverse stiffness
-  // k (1 - L/|d|) would be negative; clamped, a transverse push meets only the mass.
+  // k_c (1 - L/|d|) would be negative; clamped, a transverse push meets only the mass. Along the
+  // spring it is the compression stiffness k_c = 10 N/m, not the stretch stiffness k = 100 N/m.
   ClothModel<double> model;
   model.cols = 2;
   model.rows = 1;
   model.dx = 1;
   model.dy = 1;
-  model.families = {{SpringKind::kStructural, 0, 1, 1.0, 100.0, 0.0}};
+  model.families = {{SpringKind::kStructural, 0, 1, 1.0, 100.0, 0.0, 10.0}};
   model.mass = {1.0, 2.0};
   model.inverse_mass = {0.0, 0.5};
   model.rest_x = {0, 1};
@@ -147,9 +148,15 @@ TEST(SpringJacobian, CompressedSpringKeepsOnlyItsAxialStiffness) {
   push.z = {0, 0};
   product.Resize(2);
   jacobian.Multiply(push, 0, &product);
-  EXPECT_DOUBLE_EQ(product.x[1], 2.0 + 0.01 * 100.0);  // m + h^2 k along the spring
-  EXPECT_DOUBLE_EQ(product.y[1], 2.0);                 // m alone across it
-  EXPECT_EQ(product.x[0], 0.0);                        // the pinned row is filtered out
+  EXPECT_DOUBLE_EQ(product.x[1], 2.0 + 0.01 * 10.0);  // m + h^2 k_c along the spring
+  EXPECT_DOUBLE_EQ(product.y[1], 2.0);                // m alone across it
+  EXPECT_EQ(product.x[0], 0.0);                       // the pinned row is filtered out
+
+  state.x[1] = 1.5;  // stretched: k along the spring, k (1 - L/|d|) = k / 3 across it
+  jacobian.Assemble(model, state, forces, 0.1, 0.0, 1, &rhs);
+  jacobian.Multiply(push, 0, &product);
+  EXPECT_DOUBLE_EQ(product.x[1], 2.0 + 0.01 * 100.0);
+  EXPECT_NEAR(product.y[1], 2.0 + 0.01 * 100.0 / 3, 1e-12);
 }
 
 }  // namespace
