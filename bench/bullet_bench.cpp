@@ -2,7 +2,12 @@
 // per 2 ms step on one thread and the largest stable step of each method, at three grid sizes.
 //
 //   build/bench/bullet_bench [--csv FILE] [--repetitions N] [--horizon S] [--iterations N]
+//   build/bench/bullet_bench --work-precision [--csv FILE] [--iterations N] [--steps N]
 //
+// --work-precision  instead, Bullet's point on the lab's work-precision chart: its error against
+//                   the lab's reference and its cost, as `lab work-precision` rows (and flagsim's
+//                   integrators timed in the same run; bullet_work_precision.cpp)
+// --steps N         with --work-precision: Bullet at 2 ms and N - 1 halvings of it (default 1)
 // --csv FILE        also write the table as CSV: grid,nodes,engine,method,substeps,ms_per_step,
 //                   bullet_over_this,stable_step_ms,stable_bound (=, >= or <)
 // --repetitions N   timed repetitions per method, their median reported (default 7)
@@ -14,22 +19,7 @@
 // column pinned (mass 0 in Bullet), gravity 9.81 m/s^2 down, a steady wind (6, 0, 1.5) m/s: the
 // breeze without its gusts, since Bullet's wind is one velocity per body.
 //
-// Bullet's flag (BulletFlag below), built from nodes, links and faces with the public API:
-//   links      flagsim's six spring families, one material each: structural (0,1) (1,0), shear
-//              (1,1) (1,-1), bend (0,2) (2,0). Appended by hand rather than by CreatePatch (one
-//              diagonal per cell) and generateBendingConstraints(2) (on a grid it also links the
-//              diagonals, or knight's moves once diagonals exist, and builds an n^2 adjacency
-//              matrix: 600 MB at 128 x 96).
-//   stiffness  kLST from each family's spring constant k, see LinkStiffness: not an exact match.
-//              Bullet's links have no damping: flagsim's spring damping is left out.
-//   air        kDP = 1 - exp(-friction h), flagsim's air friction over one step.
-//   wind       aeromodel F_TwoSided: per face rho kLF 2A0 (n.u) |u|^2 n, A0 its rest area,
-//              u = w - v, a third to each node (a share that would change a node's velocity by
-//              more than its speed in one step is cut to one that stops it along the share).
-//              kLF = C / (2 rho |w|^2) makes it flagsim's C A (n.w) n when |u| = |w| and A = A0;
-//              kDG = 0, as flagsim's law has no drag along the wind.
-//   solver     m_cfg.piterations = --iterations, btSoftRigidDynamicsWorld::stepSimulation(h, 0):
-//              exactly one internal step of h.
+// Bullet's flag: BulletFlag (bullet_flag.hpp), which says how each quantity is matched.
 //
 // What is measured:
 //   time    CPU time of this thread (CLOCK_THREAD_CPUTIME_ID) per 2 ms step, after 0.1 s of
@@ -43,22 +33,18 @@
 //           guard) and lab::StateIsSound; Bullet: stepSimulation(h, 0) in single precision, its
 //           kLST and kDP mapped for h. Found by doubling or halving from a first guess, then
 //           bisecting geometrically to 5 %; searched within [1 us, 50 ms].
-#include <BulletSoftBody/btSoftBody.h>
-#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
-#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
-#include <btBulletDynamicsCommon.h>
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
-#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "bullet_flag.hpp"
+#include "bullet_work_precision.hpp"
+#include "lab/cpu_time.hpp"
 #include "lab/trajectory.hpp"
 #include "scene_file.hpp"
 #include "sim/cloth_model.hpp"
@@ -72,20 +58,21 @@ constexpr std::pair<int, int> kFlagGrids[] = {{32, 24}, {64, 48}, {128, 96}};  /
 constexpr sim::IntegratorKind kMethods[] = {sim::IntegratorKind::kSymplecticEuler,
                                             sim::IntegratorKind::kVelocityVerlet, sim::IntegratorKind::kRk4,
                                             sim::IntegratorKind::kXpbd, sim::IntegratorKind::kImplicitEuler};
-constexpr double kStep = 0.002;          ///< s, the step timed
-constexpr double kWarmup = 0.1;          ///< s of simulated time before timing
-constexpr double kRepetitionCpu = 0.05;  ///< s of CPU time per timed repetition, about
-constexpr double kAirDensity = 1.2;      ///< kg/m^3, Bullet's rho
+constexpr double kStep = 0.002;                       ///< s, the step timed
+constexpr double kWarmup = 0.1;                       ///< s of simulated time before timing
+constexpr double kRepetitionCpu = 0.05;               ///< s of CPU time per timed repetition, about
 constexpr double kRunawaySpeed = lab::kRunawaySpeed;  ///< m/s: a node faster than this is a blow-up
-constexpr double kSmallestStep = 1e-6;   ///< s, the stability search's range
-constexpr double kLargestStep = 0.05;    ///< s
-constexpr double kStepPrecision = 1.05;  ///< the search stops when hi / lo is at most this
+constexpr double kSmallestStep = 1e-6;                ///< s, the stability search's range
+constexpr double kLargestStep = 0.05;                 ///< s
+constexpr double kStepPrecision = 1.05;               ///< the search stops when hi / lo is at most this
 
 struct Options {
   int repetitions = 7;
-  double horizon = 2.0;  ///< s
-  int iterations = 10;   ///< Bullet's piterations
-  std::string csv_path;  ///< "" writes no CSV
+  double horizon = 2.0;         ///< s
+  int iterations = 10;          ///< Bullet's piterations
+  std::string csv_path;         ///< "" writes no CSV
+  bool work_precision = false;  ///< Bullet's point on the work-precision chart instead
+  int steps = 1;                ///< --work-precision: 2 ms and steps - 1 halvings
 };
 
 /// The largest stable step, or a bound on it when the search range ends first.
@@ -107,6 +94,10 @@ struct Row {
 bool ParseOptions(int argc, char** argv, Options* options) {
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
+    if (flag == "--work-precision") {
+      options->work_precision = true;
+      continue;
+    }
     if (i + 1 >= argc) return false;
     const std::string value = argv[++i];
     if (flag == "--csv") {
@@ -117,11 +108,14 @@ bool ParseOptions(int argc, char** argv, Options* options) {
       options->horizon = std::atof(value.c_str());
     } else if (flag == "--iterations") {
       options->iterations = std::atoi(value.c_str());
+    } else if (flag == "--steps") {
+      options->steps = std::atoi(value.c_str());
     } else {
       return false;
     }
   }
-  return options->repetitions >= 1 && options->horizon > 0 && options->iterations >= 1;
+  return options->repetitions >= 1 && options->horizon > 0 && options->iterations >= 1 &&
+         options->steps >= 1 && options->steps <= 12;
 }
 
 /// The breeze scene at cols x rows nodes on one thread, its gusts off.
@@ -134,142 +128,23 @@ Scene FlagScene(int cols, int rows) {
   return scene;
 }
 
-/// s of CPU time used by the calling thread.
-double ThreadSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
-}
-
 /// step() timed => median ms of CPU time per call over `repetitions` repetitions, each of as many
 /// calls as one call's time says fit in kRepetitionCpu.
 double MedianStepMs(int repetitions, const std::function<void()>& step) {
-  const double start = ThreadSeconds();
+  const double start = lab::ThreadCpuSeconds();
   step();
-  const double once = ThreadSeconds() - start;
+  const double once = lab::ThreadCpuSeconds() - start;
   const int calls = std::max(1, int(kRepetitionCpu / std::max(once, 1e-9)));
   std::vector<double> ms;
   for (int r = 0; r < repetitions; ++r) {
-    const double begin = ThreadSeconds();
+    const double begin = lab::ThreadCpuSeconds();
     for (int i = 0; i < calls; ++i) step();
-    ms.push_back(1e3 * (ThreadSeconds() - begin) / calls);
+    ms.push_back(1e3 * (lab::ThreadCpuSeconds() - begin) / calls);
   }
   std::sort(ms.begin(), ms.end());
   const size_t middle = ms.size() / 2;
   return ms.size() % 2 == 1 ? ms[middle] : 0.5 * (ms[middle - 1] + ms[middle]);
 }
-
-/// Bullet's kLST for a spring of constant k (N/m) whose nodes' inverse masses sum to w (1/kg), at
-/// step h (s) with n position iterations. An XPBD projection of the spring as a constraint of
-/// compliance 1/k closes the fraction f = k h^2 w / (1 + k h^2 w) of its error in one step (what
-/// backward Euler does to the spring alone); Bullet closes kLST of it per iteration, so n
-/// iterations on a lone link close 1 - (1 - kLST)^n. Hence kLST = 1 - (1 - f)^(1/n). Coupled
-/// links converge more slowly under Gauss-Seidel, so the sheet comes out softer than flagsim's.
-double LinkStiffness(double k, double w, double h, int n) {
-  const double stiffness = k * h * h * w;
-  const double fraction = stiffness / (1 + stiffness);
-  return 1 - std::pow(1 - fraction, 1.0 / n);
-}
-
-/// The flag of `scene` as a Bullet soft body alone in a soft-rigid world, stepped by h.
-class BulletFlag {
- public:
-  BulletFlag(const Scene& scene, double h, int iterations) : h_(h) {
-    const sim::ClothModel<double> model = sim::BuildClothModel<double>(scene.sim);
-    AddBody(model);
-    AddLinks(model, iterations);
-    AddFaces(model);
-    Configure(scene, iterations);
-    world_.addSoftBody(body_.get());
-  }
-  ~BulletFlag() { world_.removeSoftBody(body_.get()); }
-  BulletFlag(const BulletFlag&) = delete;
-  BulletFlag& operator=(const BulletFlag&) = delete;
-
-  /// One internal step of exactly h (maxSubSteps = 0: no fixed-step accumulator).
-  void Step() { world_.stepSimulation(btScalar(h_), 0); }
-
-  /// Every position and velocity finite and no velocity component above `runaway` m/s.
-  bool IsSound(double runaway) const {
-    for (int i = 0; i < body_->m_nodes.size(); ++i) {
-      const btSoftBody::Node& node = body_->m_nodes[i];
-      for (int k = 0; k < 3; ++k) {
-        if (!std::isfinite(node.m_x[k]) || !(std::abs(node.m_v[k]) <= runaway)) return false;
-      }
-    }
-    return true;
-  }
-
-  /// kLST per spring family, in ClothModel::families order.
-  const std::vector<double>& link_stiffness() const { return link_stiffness_; }
-
- private:
-  // Node (r, c) at flagsim's rest position, with flagsim's mass; 0 (pinned) on the hoist column.
-  void AddBody(const sim::ClothModel<double>& model) {
-    const int n = model.num_nodes();
-    std::vector<btVector3> positions(n);
-    std::vector<btScalar> masses(n);
-    for (int i = 0; i < n; ++i) {
-      positions[i] =
-          btVector3(btScalar(model.rest_x[i]), btScalar(model.rest_y[i]), btScalar(model.rest_z[i]));
-      masses[i] = model.pinned(i) ? btScalar(0) : btScalar(model.mass[i]);
-    }
-    body_ = std::make_unique<btSoftBody>(&world_.getWorldInfo(), n, positions.data(), masses.data());
-  }
-
-  // Each family a material, its kLST mapped from the spring constant with w = 2 / m of an
-  // interior node; one link per flagsim spring (r, c) -> (r + dr, c + dc).
-  void AddLinks(const sim::ClothModel<double>& model, int iterations) {
-    const double w = 2 * model.inverse_mass[model.index(1, 1)];
-    for (const sim::SpringFamily<double>& family : model.families) {
-      btSoftBody::Material* material = body_->appendMaterial();
-      material->m_kLST = btScalar(LinkStiffness(family.stiffness, w, h_, iterations));
-      link_stiffness_.push_back(material->m_kLST);
-      for (int r = 0; r + family.dr < model.rows; ++r) {
-        for (int c = family.first_col(); c < family.end_col(model.cols); ++c) {
-          body_->appendLink(model.index(r, c), model.index(r + family.dr, c + family.dc), material);
-        }
-      }
-    }
-  }
-
-  // flagsim's two triangles per cell, in its winding: upper (r, c) (r+1, c) (r, c+1), lower
-  // (r+1, c) (r+1, c+1) (r, c+1).
-  void AddFaces(const sim::ClothModel<double>& model) {
-    for (int r = 0; r + 1 < model.rows; ++r) {
-      for (int c = 0; c + 1 < model.cols; ++c) {
-        body_->appendFace(model.index(r, c), model.index(r + 1, c), model.index(r, c + 1));
-        body_->appendFace(model.index(r + 1, c), model.index(r + 1, c + 1), model.index(r, c + 1));
-      }
-    }
-  }
-
-  // Gravity, air friction, wind and solver as the file's header describes.
-  void Configure(const Scene& scene, int iterations) {
-    const btVector3 gravity(0, btScalar(-scene.sim.gravity), 0);
-    world_.setGravity(gravity);
-    world_.getWorldInfo().m_gravity = gravity;
-    world_.getWorldInfo().air_density = btScalar(kAirDensity);
-    const sim::Vec3& wind = scene.wind.velocity;
-    const double speed_squared = wind[0] * wind[0] + wind[1] * wind[1] + wind[2] * wind[2];
-    btSoftBody::Config& config = body_->m_cfg;
-    config.piterations = iterations;
-    config.kDP = btScalar(1 - std::exp(-scene.sim.friction * h_));
-    config.aeromodel = btSoftBody::eAeroModel::F_TwoSided;
-    config.kLF = btScalar(scene.sim.wind_coefficient / (2 * kAirDensity * speed_squared));
-    config.kDG = 0;
-    body_->setWindVelocity(btVector3(btScalar(wind[0]), btScalar(wind[1]), btScalar(wind[2])));
-  }
-
-  double h_;  ///< s per step
-  btSoftBodyRigidBodyCollisionConfiguration collision_configuration_;
-  btCollisionDispatcher dispatcher_{&collision_configuration_};
-  btDbvtBroadphase broadphase_;
-  btSequentialImpulseConstraintSolver solver_;
-  btSoftRigidDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &collision_configuration_};
-  std::unique_ptr<btSoftBody> body_;
-  std::vector<double> link_stiffness_;
-};
 
 /// Steps that make up `seconds` of simulated time at step h, at least one.
 int StepsFor(double seconds, double h) { return std::max(1, int(std::lround(seconds / h))); }
@@ -304,7 +179,7 @@ bool FlagsimStable(const Scene& scene, sim::IntegratorKind method, double horizo
 
 /// Whether Bullet's flag survives `horizon` seconds in steps of h.
 bool BulletStable(const Scene& scene, int iterations, double horizon, double h) {
-  BulletFlag flag(scene, h, iterations);
+  BulletFlag flag(scene.sim, scene.wind, h, iterations);
   for (int i = StepsFor(horizon, h); i > 0; --i) flag.Step();
   return flag.IsSound(kRunawaySpeed);
 }
@@ -337,7 +212,7 @@ Row MeasureFlagsim(const Scene& scene, sim::IntegratorKind method, const Options
 }
 
 Row MeasureBullet(const Scene& scene, const Options& options) {
-  BulletFlag flag(scene, kStep, options.iterations);
+  BulletFlag flag(scene.sim, scene.wind, kStep, options.iterations);
   for (int i = StepsFor(kWarmup, kStep); i > 0; --i) flag.Step();
   Row row;
   row.cols = scene.sim.cols;
@@ -354,7 +229,7 @@ std::string GridName(int cols, int rows) { return std::to_string(cols) + "x" + s
 
 /// The mapped kLST of each spring family at the timed step.
 void PrintLinkStiffness(const Scene& scene, const Options& options) {
-  const BulletFlag flag(scene, kStep, options.iterations);
+  const BulletFlag flag(scene.sim, scene.wind, kStep, options.iterations);
   const std::vector<double>& k = flag.link_stiffness();
   std::printf("%s Bullet kLST at h = 2 ms: structural %.3f %.3f, shear %.3f %.3f, bend %.4f %.4f\n",
               GridName(scene.sim.cols, scene.sim.rows).c_str(), k[0], k[1], k[2], k[3], k[4], k[5]);
@@ -408,9 +283,15 @@ void MeasureGrid(int cols, int rows, const Options& options, std::vector<Row>* t
 int main(int argc, char** argv) {
   flagsim::Options options;
   if (!flagsim::ParseOptions(argc, argv, &options)) {
-    std::fprintf(stderr, "usage: %s [--csv FILE] [--repetitions N] [--horizon S] [--iterations N]\n",
-                 argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s [--csv FILE] [--repetitions N] [--horizon S] [--iterations N]\n"
+                 "       %s --work-precision [--csv FILE] [--iterations N] [--steps N]\n",
+                 argv[0], argv[0]);
     return 2;
+  }
+  if (options.work_precision) {
+    flagsim::BulletWorkPrecision(options.iterations, options.steps, options.csv_path);
+    return 0;
   }
   std::printf("breeze flag, steady wind; 1 thread; time: thread CPU ms per 2 ms step, median of %d\n",
               options.repetitions);

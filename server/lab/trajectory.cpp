@@ -33,15 +33,19 @@ sim::ClothState<Real> RunFixed(const Trial& trial, int substeps) {
   return state;
 }
 
-double CostPerSimulatedSecond(const Trial& trial, int substeps, int repeats) {
+double MedianCpuSeconds(int repeats, const std::function<void()>& run) {
   std::vector<double> seconds;
   for (int i = 0; i < repeats; ++i) {
     const double start = ThreadCpuSeconds();
-    RunFixed<float>(trial, substeps);
+    run();
     seconds.push_back(ThreadCpuSeconds() - start);
   }
   std::nth_element(seconds.begin(), seconds.begin() + seconds.size() / 2, seconds.end());
-  return seconds[seconds.size() / 2] / trial.horizon;
+  return seconds[seconds.size() / 2];
+}
+
+double CostPerSimulatedSecond(const Trial& trial, int substeps, int repeats) {
+  return MedianCpuSeconds(repeats, [&] { RunFixed<float>(trial, substeps); }) / trial.horizon;
 }
 
 double RmsDistance(const sim::ClothState<double>& a, const sim::ClothState<double>& b) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "sim/cloth_state.hpp"
 #include "sim/sim_params.hpp"
@@ -23,6 +24,9 @@ struct Trial {
 /// trial.params.integrator. A run that goes unsound (StateIsSound) stops there.
 template <typename Real>
 sim::ClothState<Real> RunFixed(const Trial& trial, int substeps);
+
+/// Seconds of this thread's CPU time that `run` takes, the median of `repeats` calls.
+double MedianCpuSeconds(int repeats, const std::function<void()>& run);
 
 /// Seconds of this thread's CPU time to do RunFixed<float> (what the server pays), the median of
 /// `repeats` runs, over trial.horizon: the cost per simulated second.
