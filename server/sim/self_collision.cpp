@@ -84,7 +84,7 @@ void SelfCollision<Real>::Load(const ClothModel<Real>& model, const ClothState<R
 
 template <typename Real>
 void SelfCollision<Real>::SweptBoxes() {
-  const Point grow = Point::Constant(thickness_);
+  const Point grow = Point::Constant(thickness_ / 2);  // two boxes overlap when within h
   node_box_.resize(start_.rows());
   for (int i = 0; i < int(start_.rows()); ++i) {
     node_box_[i] = {Start(i).cwiseMin(End(i)) - grow, Start(i).cwiseMax(End(i)) + grow};

@@ -4,12 +4,17 @@
 // friction for cloth animation", in the form of a correction after the step).
 //
 // With v = (x1 - x0) / dt each node's average velocity over the step:
-//   cull       the mesh is cut into patches (cloth_patches.hpp). A patch, or two neighbouring
-//              patches together, whose triangles' normals stay within a cone of half-angle
-//              below 90 degrees over the whole step cannot meet itself (Volino and
-//              Magnenat-Thalmann 1994, the normal-cone criterion), so it is skipped; two
-//              patches that are not neighbours are examined only if their boxes, swept over
-//              the step and grown by the thickness h, overlap.
+//   cull       the mesh is cut into patches of 2 x 2 cells under a tree of rectangles
+//              (cloth_patches.hpp). A region whose triangles' normals stay within a cone of
+//              half-angle below 90 degrees over the whole step cannot meet itself (Volino and
+//              Magnenat-Thalmann 1994, the normal-cone criterion; its test that the region's
+//              outline does not cross itself in projection is left out, as a grid of springs
+//              cannot shear that far), nor can two touching regions whose cones together stay
+//              below it. Regions are examined pair by pair down the tree only where their
+//              boxes, swept over the step and grown by h/2, overlap; two patches apart also
+//              need no plane across the line between their centres to part them.
+//              Why cones and not a spatial hash: a hash pays for every node and cell at every
+//              step; the cones cost a normal per triangle and let a smooth flag skip the rest.
 //   proximity  point-triangle and edge-edge pairs closer than h at x0 and approaching get an
 //              impulse that stops the approach and parts them by a tenth of the overlap per
 //              step: a folded flag lies on itself h apart.
@@ -125,7 +130,7 @@ class SelfCollision {
   double thickness_ = 0, dt_ = 0;
 
   // Per step, per node: positions at the start and end (as corrected), the end as integrated,
-  // inverse mass (0 when pinned or held), swept box grown by h.
+  // inverse mass (0 when pinned or held), swept box grown by h/2.
   Positions start_, end_, integrated_;
   std::vector<double> inverse_mass_;
   std::vector<Box> node_box_, triangle_box_, edge_box_;
