@@ -247,7 +247,11 @@ void Simulation<Real>::Advance() {
     integrator_->Substep(context, h, &state_);
     PushOutOfObstacles(model_, obstacles, &state_);
   }
-  if (params_.self_collision) self_collision_->Resolve(model_, params_, params_.dt, step_start_, &state_);
+  // A state already running away is the guard's to roll back, not worth colliding: its swept
+  // boxes would cover everything.
+  if (params_.self_collision && Problem().empty()) {
+    self_collision_->Resolve(model_, params_, params_.dt, step_start_, &state_);
+  }
   state_.time = start + params_.dt;
   ++state_.step;
 }

@@ -109,19 +109,21 @@ TEST(SelfCollision, AStepWhereNothingIsNearIsLeftAsItWasBitForBit) {
   EXPECT_GE(compared, 100) << "the breeze touched itself within its first steps";
 }
 
-TEST(Obstacles, AFlagWithoutStiffnessOutOfItsPlaneFallsOntoTheGroundAndLiesThere) {
+TEST(Obstacles, AFlagOnAShortPoleInStillAirEndsUpOnTheGroundAndLiesThere) {
   Scene scene = LoadScene("hanging");
-  scene.sim.pole_height = 1.2;  // the flag's foot 0.18 m above the ground
-  scene.sim.shear_stiffness = 0;
-  scene.sim.bend_stiffness = 0;
+  scene.sim.pole_height = 1.2;  // the flag's foot 0.18 m above the ground, its fly 1.5 m long
   Simulation<float> simulation(scene.sim, scene.wind, scene.seed);
   double lowest = INFINITY;
-  while (simulation.state().time < 5) {
+  while (simulation.state().time < 10) {
     simulation.Step();
     for (float y : simulation.state().y) lowest = std::min(lowest, double(y));
   }
   EXPECT_GE(lowest, 0.0);
-  EXPECT_LE(lowest, scene.sim.thickness);  // it reached the ground and rests on it
+  int resting = 0;  // nodes on the ground at the end
+  for (float y : simulation.state().y) resting += y <= scene.sim.thickness;
+  EXPECT_GT(resting, 0);
+  std::printf("on a %.1f m pole: %d nodes rest on the ground, lowest %.4f m\n", scene.sim.pole_height,
+              resting, lowest);
 }
 
 }  // namespace
