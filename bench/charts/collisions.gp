@@ -20,7 +20,7 @@ set output png
 set datafile separator ","
 set termoption noenhanced
 set grid xtics ytics mxtics mytics
-set key top right box opaque
+set key top left box opaque
 set logscale x 10
 set logscale y 10
 set format x "%g"
@@ -32,6 +32,15 @@ set title "Self-collision: crossing pairs against cost per step, off and on, in 
 floor = 0.1  # crossings per second drawn for "none"
 at_floor(value) = value > 0 ? value : floor
 case_name(dummy) = strcol(1) . " " . strcol(2) . "x" . strcol(3)
+# Label offsets (characters) by preset, so that the three 32 x 24 cases' labels stay apart: off
+# points' labels above right (calm's to the left, gale's below); on points' labels stacked under
+# the floor line, where they all sit.
+presets = "breeze calm gale"
+off_dx = "1 -11 1"
+off_dy = "0.8 0 -0.9"
+on_dy = "-0.9 -1.9 -2.9"
+# The value of `column` in rows of preset `name`, else undefined.
+only(name, column) = strcol(1) eq name ? column(column) : NaN
 
 stats csv skip 1 using 9 name "off_ms" nooutput
 stats csv skip 1 using 10 name "on_ms" nooutput
@@ -39,7 +48,7 @@ stats csv skip 1 using (at_floor(column(15))) name "off_rate" nooutput
 least_ms = off_ms_min < on_ms_min ? off_ms_min : on_ms_min
 most_ms = off_ms_max > on_ms_max ? off_ms_max : on_ms_max
 set xrange [least_ms / 2:most_ms * 3]
-set yrange [floor / 2:(off_rate_max > 1 ? off_rate_max : 1) * 5]
+set yrange [floor / 8:(off_rate_max > 1 ? off_rate_max : 1) * 5]
 set arrow 1 from graph 0, first floor to graph 1, first floor nohead dashtype 2 linecolor rgb "#555555"
 set label 1 "none" at graph 0.01, first floor offset 0,0.6 textcolor rgb "#555555"
 
@@ -51,7 +60,8 @@ plot pairs using 1:(at_floor($2)) with lines linecolor rgb "#bbbbbb" notitle, \
        linecolor rgb "#d62728" title "self_collision off", \
      csv skip 1 using 10:(at_floor(column(16))) with points pointtype 5 pointsize 1.6 \
        linecolor rgb "#1f77b4" title "self_collision on", \
-     csv skip 1 using 9:(at_floor(column(15))):(case_name(0)) with labels offset char 1,0.8 left \
-       font ",9" textcolor rgb "#d62728" notitle, \
-     csv skip 1 using 10:(at_floor(column(16))):(case_name(0)) with labels offset char 1,-0.8 left \
-       font ",9" textcolor rgb "#1f77b4" notitle
+     for [i=1:3] csv skip 1 using (only(word(presets, i), 9)):(at_floor(column(15))):(case_name(0)) \
+       with labels offset char real(word(off_dx, i)),real(word(off_dy, i)) left font ",9" \
+       textcolor rgb "#d62728" notitle, \
+     for [i=1:3] csv skip 1 using (only(word(presets, i), 10)):(at_floor(column(16))):(case_name(0)) \
+       with labels offset char 1,real(word(on_dy, i)) left font ",9" textcolor rgb "#1f77b4" notitle
