@@ -5,14 +5,14 @@
 #include <cmath>
 #include <string>
 
+#include "lab/triangle_crossings.hpp"
 #include "scene/scene_file.hpp"
 #include "sim/simulation.hpp"
-#include "sim/triangle_crossings.hpp"
 
 namespace flagsim::sim {
 namespace {
 
-using testing::CrossingTrianglePairs;
+using lab::CrossingTrianglePairs;
 
 TEST(CollisionGeometry, ClosestPointsOnATriangleAndTwoSegments) {
   const Point a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};

@@ -1,5 +1,5 @@
-// An independent count of crossing triangle pairs, for tests: it shares no code with the
-// collision handling it checks.
+// An independent count of crossing triangle pairs, for tests and benchmarks: it shares no code
+// with the collision handling it checks.
 //
 // Two triangles that share no corner cross when an edge of one passes through the other. A
 // segment pq passes through triangle abc when p and q lie on opposite sides of abc's plane and
@@ -16,7 +16,7 @@
 #include <numeric>
 #include <vector>
 
-namespace flagsim::testing {
+namespace flagsim::lab {
 
 using Point3 = std::array<long double, 3>;
 
@@ -139,4 +139,4 @@ int CrossingTrianglePairs(const std::vector<std::array<int, 3>>& triangles, cons
   return crossings;
 }
 
-}  // namespace flagsim::testing
+}  // namespace flagsim::lab
