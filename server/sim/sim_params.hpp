@@ -29,11 +29,11 @@ struct SimParams {
   // so the flag's response does not change when the grid is refined (see cloth_model.hpp).
   double stiffness = 2000.0;       ///< N/m, structural springs (neighbours along rows, columns)
   double shear_stiffness = 200.0;  ///< N/m, diagonal springs
-  double bend_stiffness = 20.0;    ///< N/m, springs between nodes two apart
+  double bend_stiffness = 100.0;   ///< N/m, springs between nodes two apart
   double damping = 0.05;           ///< N s/m, along every spring, scaled like the stiffness
 
   // Cloth against compression, itself, the pole and the ground.
-  double compression = 0.1;    ///< compressive stiffness of structural and shear springs, as a fraction
+  double compression = 0.3;    ///< compressive stiffness of structural and shear springs, as a fraction
                                ///< of their stiffness: cloth buckles rather than compress in its plane
   double imperfection = 1e-3;  ///< m, out of the plane: the rest state's largest departure from a
                                ///< flat sheet (smooth, seeded), which buckling grows from

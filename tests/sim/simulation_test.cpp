@@ -39,9 +39,12 @@ TEST(Simulation, PinnedNodesNeverMove) {
 
 TEST(Simulation, FlagAtRestInStillAirSettles) {
   // Mechanical energy (kinetic + springs + gravity) can only fall with friction and damping;
-  // by 20 s the flag hangs still.
+  // by 20 s the flag hangs still. Without self-collision: its proximity impulses, which keep
+  // folds a thickness apart, may add a little energy where the drape lies on itself (the pole
+  // and the ground only take it away).
   SimParams params;
   params.friction = 1.0;
+  params.self_collision = false;
   Simulation<double> simulation(params, testing::NoWind());
   const auto energy = [&] {
     const auto& model = simulation.model();
@@ -100,8 +103,9 @@ TEST(Simulation, SameHashAtAnyThreadCount) {
 // The default scene after 500 steps (1 s), as this code computes it. A change here means the
 // physics changed: if that was intended, print the new value and update it in the same commit.
 // (0xd628f8b6767a6207 before springs were softer in compression and the sheet imperfect;
-// 0x71a3790fe08a8a7b before the hoist moved onto the pole's surface and the cloth met itself.)
-constexpr uint64_t kGoldenBreezeHash = 0x38a62ea50d1efbb9;
+// 0x71a3790fe08a8a7b before the hoist moved onto the pole's surface and the cloth met itself;
+// 0x38a62ea50d1efbb9 before the default bending stiffness went from 20 to 100 N/m.)
+constexpr uint64_t kGoldenBreezeHash = 0x85ff3c766e144025;
 
 TEST(Simulation, GoldenStateHash) {
   Simulation<float> simulation(SimParams{}, Breeze());
@@ -112,8 +116,9 @@ TEST(Simulation, GoldenStateHash) {
 // Springs as stiff in compression as in stretch, on a flat sheet, without self-collision: the
 // physics before the stretch/compression split, the imperfection and the collisions, bit for
 // bit. (Its golden hash of that time, 0xd628f8b6767a6207, had the hoist on the pole's axis; the
-// flag now hangs the pole's radius further out, which changes the roundings.)
-constexpr uint64_t kGoldenLinearFlatBreezeHash = 0xe92831a0f43fdc92;
+// flag now hangs the pole's radius further out, which changes the roundings, and the default
+// bending stiffness is 100 N/m, not 20.)
+constexpr uint64_t kGoldenLinearFlatBreezeHash = 0x697be2dadcd176fd;
 
 TEST(Simulation, LinearSpringsOnAFlatSheetKeepTheirGoldenStateHash) {
   SimParams params;
