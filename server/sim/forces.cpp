@@ -10,9 +10,6 @@
 namespace flagsim::sim {
 namespace {
 
-/// m: the shortest length divided by; 1 / kShortest^2 stays finite in float.
-constexpr float kShortest = 1e-9f;
-
 // The kernels below take every array as a __restrict parameter (GCC honours restrict on
 // parameters, not on locals), so that each loop over a grid row vectorises.
 
@@ -30,7 +27,7 @@ void SpringKernel(const Real* __restrict x, const Real* __restrict y, const Real
     const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
     const Real length_squared = dx * dx + dy * dy + dz * dz;
     // A zero-length spring has d = 0 and so no force; the floor only keeps 1/|d| finite.
-    const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortest));
+    const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortestSpring));
     const Real closing = (vx[b] - vx[a]) * dx + (vy[b] - vy[a]) * dy + (vz[b] - vz[a]) * dz;
     const Real stretch = length_squared * inverse - rest;  // m: |d| - L
     const Real k = stretch < Real(0) ? compressed : stretched;
@@ -60,7 +57,8 @@ void WindKernel(const Real* __restrict x, const Real* __restrict y, const Real* 
     const Real ux = wx[a] - relative * third * (vx[p] + vx[q] + vx[s]);
     const Real uy = wy[a] - relative * third * (vy[p] + vy[q] + vy[s]);
     const Real uz = wz[a] - relative * third * (vz[p] + vz[q] + vz[s]);
-    const Real norm = std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortest * kShortest));
+    const Real norm =
+        std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortestSpring * kShortestSpring));
     const Real scale = share * (ex * ux + ey * uy + ez * uz) / norm;
     fx[a] = scale * ex;
     fy[a] = scale * ey;

@@ -30,6 +30,11 @@ struct RowBand {
   int begin = 0, end = 0;
 };
 
+/// m: the shortest spring length divided by. A shorter spring has no direction: its force,
+/// Jacobian block and projection target are taken as zero, and 1 / kShortestSpring^2 stays
+/// finite in float.
+inline constexpr float kShortestSpring = 1e-9f;
+
 /// Which forces to sum: all of them, or all but the springs (for integrators that solve the
 /// springs themselves as constraints).
 enum class ForceTerms { kAll, kExternal };
