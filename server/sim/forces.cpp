@@ -254,7 +254,8 @@ void ForceEvaluator<Real>::GatherBand(const ClothModel<Real>& model, const SimPa
     sources.y[k] = g.y.data() + start;
     sources.z[k++] = g.z.data() + start;
   };
-  for (size_t f = 0; terms == ForceTerms::kAll && f < model.families.size(); ++f) {
+  const bool springs = Includes(terms, ForceTerms::kSprings);
+  for (size_t f = 0; springs && f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];
     add(spring_[f], 0);                             // as the first node: + f
     add(spring_[f], family.dr * cols + family.dc);  // as the far node: - f
@@ -264,16 +265,24 @@ void ForceEvaluator<Real>::GatherBand(const ClothModel<Real>& model, const SimPa
     ++k;
   }
   // Triangles touching node (r, c): upper of cells (r, c) (r-1, c) (r, c-1);
-  // lower of cells (r-1, c) (r-1, c-1) (r, c-1).
-  add(upper_, 0);
-  add(upper_, cols);
-  add(upper_, 1);
-  add(lower_, cols);
-  add(lower_, cols + 1);
-  add(lower_, 1);
+  // lower of cells (r-1, c) (r-1, c-1) (r, c-1). Without wind: zeros.
+  if (Includes(terms, ForceTerms::kWind)) {
+    add(upper_, 0);
+    add(upper_, cols);
+    add(upper_, 1);
+    add(lower_, cols);
+    add(lower_, cols + 1);
+    add(lower_, 1);
+  }
+  while (k < kGatherSources) {
+    sources.x[k] = sources.y[k] = sources.z[k] = zero_.data();
+    ++k;
+  }
+  const double gravity = Includes(terms, ForceTerms::kGravity) ? params.gravity : 0.0;
+  const double friction = Includes(terms, ForceTerms::kFriction) ? AirFriction(params) : 0.0;
   GatherKernel(sources, model.mass.data() + first, state.vx.data() + first, state.vy.data() + first,
-               state.vz.data() + first, Real(params.gravity), Real(AirFriction(params)),
-               forces->x.data() + first, forces->y.data() + first, forces->z.data() + first, count);
+               state.vz.data() + first, Real(gravity), Real(friction), forces->x.data() + first,
+               forces->y.data() + first, forces->z.data() + first, count);
 }
 
 template <typename Real>
@@ -282,7 +291,7 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
                                     NodeForces<Real>* forces, ForceTerms terms,
                                     const std::function<void(int)>& after_row) {
   Resize(model);
-  SampleWind(model, wind, t);
+  if (Includes(terms, ForceTerms::kWind)) SampleWind(model, wind, t);
   forces->x.resize(model.num_nodes());
   forces->y.resize(model.num_nodes());
   forces->z.resize(model.num_nodes());
@@ -291,8 +300,8 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
 #pragma omp parallel num_threads(params.threads) if (params.threads > 1)
   {
     const RowBand band = ThreadBand(model.rows, omp_get_thread_num(), omp_get_num_threads());
-    if (terms == ForceTerms::kAll) SpringBand(model, state, band);
-    WindBand(model, params, state, band);
+    if (Includes(terms, ForceTerms::kSprings)) SpringBand(model, state, band);
+    if (Includes(terms, ForceTerms::kWind)) WindBand(model, params, state, band);
 #pragma omp barrier
     GatherBand(model, params, state, band, terms, forces);
     if (after_row) {

@@ -141,13 +141,11 @@ class ProjectiveDynamics : public Integrator<Real> {
   void Reset() override { laplacian_.Clear(); }
 
  private:
-  /// Gravity and wind at the step's start: every force but the springs' and friction.
+  /// Gravity and wind at the step's start: every force but the springs' and friction (the
+  /// global step's matrix holds both).
   void ExternalForces(const StepContext<Real>& context, const ClothState<Real>& state) {
-    external_model_ = context.model;
-    external_model_.families.clear();
-    external_params_ = context.params;
-    external_params_.friction = 0;
-    context.evaluator.Evaluate(external_model_, external_params_, context.wind, state, state.time, &forces_);
+    context.evaluator.Evaluate(context.model, context.params, context.wind, state, state.time, &forces_,
+                               ForceTerms::kGravity | ForceTerms::kWind);
   }
 
   /// Adds the explicit part of the spring damping to f_ext (see the top of this file): every
@@ -277,9 +275,7 @@ class ProjectiveDynamics : public Integrator<Real> {
   }
 
   SpringLaplacian<Real> laplacian_;
-  ClothModel<Real> external_model_;  ///< the model without springs
-  SimParams external_params_;        ///< the parameters without friction
-  NodeForces<Real> forces_;          ///< f_ext
+  NodeForces<Real> forces_;  ///< f_ext
   NodeVectors<Real> iterate_, momentum_, rhs_, displacement_;
   std::vector<NodeVectors<Real>> targets_;  ///< t per spring, per family, at the spring's first node
 };

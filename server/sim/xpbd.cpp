@@ -38,7 +38,7 @@ class Xpbd : public Integrator<Real> {
   void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) override {
     const ClothModel<Real>& model = context.model;
     context.evaluator.Evaluate(model, context.params, context.wind, *state, state->time, &forces_,
-                               ForceTerms::kExternal);
+                               Without(ForceTerms::kAll, ForceTerms::kSprings));
     Predict(model, context.params.threads, Real(h), state);
     lambda_.resize(model.families.size());
     for (std::vector<Real>& lambda : lambda_) lambda.assign(model.num_nodes(), Real(0));
