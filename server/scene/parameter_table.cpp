@@ -168,7 +168,7 @@ ParameterTable::ParameterTable() {
            "step: commands apply between steps; explicit integrators substep for stability"),
       Make("integrator", "", ParameterKind::kChoice, 0, double(sim::IntegratorNames().size() - 1),
            &Scene::sim, &SimParams::integrator, "time integrator"),
-      Integer("substeps", 0, kMaxSubsteps, &SimParams::substeps,
+      Integer("substeps", 0, sim::kMaxSubsteps, &SimParams::substeps,
               "substeps per step; 0: chosen from the integrator's stability limit"),
       Integer("solver_iterations", 1, 1000, &SimParams::solver_iterations,
               "iterations per step of the xpbd and projective integrators"),
@@ -232,11 +232,11 @@ std::string ParameterTable::CheckConsistency(const Scene& scene) {
   // An explicit integrator on a stiff, fine or undamped flag may need more substeps than any
   // server can take in time: say so rather than stall.
   const int substeps = sim::SubstepsFor(scene.sim);
-  if (substeps > kMaxSubsteps) {
+  if (substeps > sim::kMaxSubsteps) {
     return "integrator: " + sim::IntegratorName(scene.sim.integrator) + " needs " + std::to_string(substeps) +
            (scene.sim.substeps > 0 ? " substeps per step (as set)"
                                    : " substeps per step to stay stable on this flag") +
-           "; allowed at most " + std::to_string(kMaxSubsteps) +
+           "; allowed at most " + std::to_string(sim::kMaxSubsteps) +
            ": raise damping, lower stiffness, coarsen the grid, or choose an unconditionally stable "
            "integrator (xpbd)";
   }

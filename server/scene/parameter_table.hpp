@@ -52,7 +52,6 @@ class ParameterTable {
   static constexpr double kMaxWindSpeed = 60.0;  ///< m/s
   static constexpr double kMaxGust = 1.0;        ///< fraction of the wind speed
   static constexpr double kMaxRampTime = 60.0;   ///< s
-  static constexpr int kMaxSubsteps = 4096;      ///< per step: beyond, no server keeps up
   /// Checks a wind setting (WIND command or scene file). Returns "" or the reason.
   static std::string CheckWind(const sim::WindSettings& wind);
 

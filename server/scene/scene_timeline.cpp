@@ -39,7 +39,7 @@ std::string List(const std::vector<std::string>& names) {
   return text;
 }
 
-double Length(const sim::Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+using sim::Length;
 
 /// "" or what is wrong with the parameters of key `what`.
 std::string CheckParameters(const std::vector<sim::ParameterControl>& parameters, const std::string& what) {
@@ -141,11 +141,11 @@ std::string CheckReach(const sim::Timeline& timeline, const Scene& scene) {
            "(exclusive) with integrator=seed";
   }
   const int substeps = sim::SubstepsForRange(reach.least, reach.most);
-  if (substeps <= ParameterTable::kMaxSubsteps) return "";
+  if (substeps <= sim::kMaxSubsteps) return "";
   return "keys: at their stiffest (stiffness up to " + Number(reach.most.stiffness) +
          " N/m, damping down to " + Number(reach.least.damping) + " N s/m) " +
          sim::IntegratorName(scene.sim.integrator) + " needs " + std::to_string(substeps) +
-         " substeps per step; allowed at most " + std::to_string(ParameterTable::kMaxSubsteps) +
+         " substeps per step; allowed at most " + std::to_string(sim::kMaxSubsteps) +
          ": soften the keys, damp them more, or choose an unconditionally stable integrator (xpbd)";
 }
 

@@ -46,7 +46,7 @@ std::string CheckKeyframe(const sim::Keyframe& key, const std::string& what);
 /// "" or what is wrong with `timeline` as it would drive `scene`: too many keys, a bad key
 /// ("keys[3]: ..."), a position or speed out of range, or settings the keys reach that
 /// the scene's integrator cannot take (the seed integrator's friction, more substeps per step
-/// than ParameterTable::kMaxSubsteps at the stiffest controls).
+/// than sim::kMaxSubsteps at the stiffest controls).
 std::string CheckTimeline(const sim::Timeline& timeline, const Scene& scene);
 
 /// Writes evaluated controls into `scene`: parameters within the table's ranges, the wind

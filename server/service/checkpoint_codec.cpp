@@ -281,10 +281,13 @@ std::string ReadSimulation(const checkpoint_t& message, const Scene& scene,
   Scene in_use = scene;
   std::string problem = ReadParameters(message.sim_names, message.sim_values, "sim_parameters", &in_use);
   if (problem.empty()) problem = ReadWindField(message, &out->wind);
-  if (problem.empty() && (message.substeps < 1 || message.substeps > (1 << 16)))
-    problem = "substeps: " + std::to_string(message.substeps) + "; allowed 1 .. 65536";
-  if (problem.empty() && (message.guard_factor < 1 || message.guard_factor > 64))
-    problem = "guard_factor: " + std::to_string(message.guard_factor) + "; allowed 1 .. 64";
+  constexpr int kMaxGuardFactor = sim::Simulation<float>::kMaxGuardFactor;
+  if (problem.empty() && (message.substeps < 1 || message.substeps > sim::kMaxComputedSubsteps))
+    problem = "substeps: " + std::to_string(message.substeps) + "; allowed 1 .. " +
+              std::to_string(sim::kMaxComputedSubsteps);
+  if (problem.empty() && (message.guard_factor < 1 || message.guard_factor > kMaxGuardFactor))
+    problem = "guard_factor: " + std::to_string(message.guard_factor) + "; allowed 1 .. " +
+              std::to_string(kMaxGuardFactor);
   if (problem.empty() && (message.step < 0 || !std::isfinite(message.sim_time) || message.sim_time < 0))
     problem = "step, sim_time: allowed 0 and up";
   if (problem.empty()) problem = ReadState(message, in_use.sim.cols * in_use.sim.rows, &out->state);

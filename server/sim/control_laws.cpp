@@ -6,16 +6,9 @@
 namespace flagsim::sim {
 namespace {
 
-using Vec = std::array<double, 3>;
-
-double Dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-Vec Cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-Vec Normalized(const Vec& v) {
-  const double length = std::sqrt(Dot(v, v));
+/// v / |v|.
+Vec3 Normalized(const Vec3& v) {
+  const double length = Length(v);
   return {v[0] / length, v[1] / length, v[2] / length};
 }
 
@@ -72,23 +65,23 @@ ValueRange RangeOver(ControlLaw law, const Segment& g) {
   return range;
 }
 
-Vec Slerp(const Vec& from, const Vec& to, double s) {
+Vec3 Slerp(const Vec3& from, const Vec3& to, double s) {
   const double cosine = std::clamp(Dot(from, to), -1.0, 1.0);
   const double angle = std::acos(cosine);
   if (angle < 1e-9) return to;
   // The axis to turn about, perpendicular to `from`: from x to; for opposite directions, the
   // vertical made perpendicular to `from` (x instead if `from` is vertical).
-  Vec axis = Cross(from, to);
+  Vec3 axis = Cross(from, to);
   if (Dot(axis, axis) < 1e-18) {
-    const Vec up = std::abs(from[1]) < 0.9 ? Vec{0, 1, 0} : Vec{1, 0, 0};
+    const Vec3 up = std::abs(from[1]) < 0.9 ? Vec3{0, 1, 0} : Vec3{1, 0, 0};
     const double along = Dot(up, from);
     axis = {up[0] - along * from[0], up[1] - along * from[1], up[2] - along * from[2]};
   }
   axis = Normalized(axis);
   // Rodrigues for a vector perpendicular to the axis: from cos(theta) + (axis x from) sin(theta).
-  const Vec across = Cross(axis, from);
+  const Vec3 across = Cross(axis, from);
   const double theta = s * angle;
-  Vec turned;
+  Vec3 turned;
   for (int k = 0; k < 3; ++k) turned[k] = from[k] * std::cos(theta) + across[k] * std::sin(theta);
   return Normalized(turned);
 }

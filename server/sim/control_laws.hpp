@@ -11,9 +11,10 @@
 // does not die down on the way.
 #pragma once
 
-#include <array>
 #include <string>
 #include <vector>
+
+#include "vec3.hpp"
 
 namespace flagsim::sim {
 
@@ -46,6 +47,6 @@ ValueRange RangeOver(ControlLaw law, const Segment& segment);
 /// The direction a fraction s in [0, 1] of the way from unit vector `from` to unit vector `to`
 /// along the great circle between them (spherical linear interpolation). Opposite directions
 /// turn through the horizontal plane (about the vertical axis, or about x if they are vertical).
-std::array<double, 3> Slerp(const std::array<double, 3>& from, const std::array<double, 3>& to, double s);
+Vec3 Slerp(const Vec3& from, const Vec3& to, double s);
 
 }  // namespace flagsim::sim

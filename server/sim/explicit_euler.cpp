@@ -22,14 +22,9 @@ class ExplicitEuler : public Integrator<Real> {
     const ClothModel<Real>& model = context.model;
     context.evaluator.Evaluate(model, context.params, context.wind, *state, state->time, &forces_);
     const Real step = Real(h);
-    ForEachNode(model.rows, model.cols, context.params.threads, [&](int i) {
-      const Real a = step * model.inverse_mass[i];
-      state->x[i] += step * state->vx[i];
-      state->y[i] += step * state->vy[i];
-      state->z[i] += step * state->vz[i];
-      state->vx[i] += a * forces_.x[i];
-      state->vy[i] += a * forces_.y[i];
-      state->vz[i] += a * forces_.z[i];
+    ForEachRow(model.rows, model.cols, context.params.threads, [&](NodeRange row) {
+      Drift(row, step, Velocities(*state), Positions(*state), Positions(state));  // with the old v
+      Kick(row, step, model.inverse_mass, Arrays(forces_), Velocities(*state), Velocities(state));
     });
     state->time += h;
   }

@@ -10,9 +10,6 @@
 namespace flagsim::sim {
 namespace {
 
-/// m: the shortest length divided by; 1 / kShortest^2 stays finite in float.
-constexpr float kShortest = 1e-9f;
-
 // The kernels below take every array as a __restrict parameter (GCC honours restrict on
 // parameters, not on locals), so that each loop over a grid row vectorises.
 
@@ -30,7 +27,7 @@ void SpringKernel(const Real* __restrict x, const Real* __restrict y, const Real
     const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
     const Real length_squared = dx * dx + dy * dy + dz * dz;
     // A zero-length spring has d = 0 and so no force; the floor only keeps 1/|d| finite.
-    const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortest));
+    const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortestSpring));
     const Real closing = (vx[b] - vx[a]) * dx + (vy[b] - vy[a]) * dy + (vz[b] - vz[a]) * dz;
     const Real stretch = length_squared * inverse - rest;  // m: |d| - L
     const Real k = stretch < Real(0) ? compressed : stretched;
@@ -60,7 +57,8 @@ void WindKernel(const Real* __restrict x, const Real* __restrict y, const Real* 
     const Real ux = wx[a] - relative * third * (vx[p] + vx[q] + vx[s]);
     const Real uy = wy[a] - relative * third * (vy[p] + vy[q] + vy[s]);
     const Real uz = wz[a] - relative * third * (vz[p] + vz[q] + vz[s]);
-    const Real norm = std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortest * kShortest));
+    const Real norm =
+        std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortestSpring * kShortestSpring));
     const Real scale = share * (ex * ux + ey * uy + ez * uz) / norm;
     fx[a] = scale * ex;
     fy[a] = scale * ey;
@@ -256,7 +254,8 @@ void ForceEvaluator<Real>::GatherBand(const ClothModel<Real>& model, const SimPa
     sources.y[k] = g.y.data() + start;
     sources.z[k++] = g.z.data() + start;
   };
-  for (size_t f = 0; terms == ForceTerms::kAll && f < model.families.size(); ++f) {
+  const bool springs = Includes(terms, ForceTerms::kSprings);
+  for (size_t f = 0; springs && f < model.families.size(); ++f) {
     const SpringFamily<Real>& family = model.families[f];
     add(spring_[f], 0);                             // as the first node: + f
     add(spring_[f], family.dr * cols + family.dc);  // as the far node: - f
@@ -266,16 +265,24 @@ void ForceEvaluator<Real>::GatherBand(const ClothModel<Real>& model, const SimPa
     ++k;
   }
   // Triangles touching node (r, c): upper of cells (r, c) (r-1, c) (r, c-1);
-  // lower of cells (r-1, c) (r-1, c-1) (r, c-1).
-  add(upper_, 0);
-  add(upper_, cols);
-  add(upper_, 1);
-  add(lower_, cols);
-  add(lower_, cols + 1);
-  add(lower_, 1);
+  // lower of cells (r-1, c) (r-1, c-1) (r, c-1). Without wind: zeros.
+  if (Includes(terms, ForceTerms::kWind)) {
+    add(upper_, 0);
+    add(upper_, cols);
+    add(upper_, 1);
+    add(lower_, cols);
+    add(lower_, cols + 1);
+    add(lower_, 1);
+  }
+  while (k < kGatherSources) {
+    sources.x[k] = sources.y[k] = sources.z[k] = zero_.data();
+    ++k;
+  }
+  const double gravity = Includes(terms, ForceTerms::kGravity) ? params.gravity : 0.0;
+  const double friction = Includes(terms, ForceTerms::kFriction) ? AirFriction(params) : 0.0;
   GatherKernel(sources, model.mass.data() + first, state.vx.data() + first, state.vy.data() + first,
-               state.vz.data() + first, Real(params.gravity), Real(AirFriction(params)),
-               forces->x.data() + first, forces->y.data() + first, forces->z.data() + first, count);
+               state.vz.data() + first, Real(gravity), Real(friction), forces->x.data() + first,
+               forces->y.data() + first, forces->z.data() + first, count);
 }
 
 template <typename Real>
@@ -284,7 +291,7 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
                                     NodeForces<Real>* forces, ForceTerms terms,
                                     const std::function<void(int)>& after_row) {
   Resize(model);
-  SampleWind(model, wind, t);
+  if (Includes(terms, ForceTerms::kWind)) SampleWind(model, wind, t);
   forces->x.resize(model.num_nodes());
   forces->y.resize(model.num_nodes());
   forces->z.resize(model.num_nodes());
@@ -293,8 +300,8 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
 #pragma omp parallel num_threads(params.threads) if (params.threads > 1)
   {
     const RowBand band = ThreadBand(model.rows, omp_get_thread_num(), omp_get_num_threads());
-    if (terms == ForceTerms::kAll) SpringBand(model, state, band);
-    WindBand(model, params, state, band);
+    if (Includes(terms, ForceTerms::kSprings)) SpringBand(model, state, band);
+    if (Includes(terms, ForceTerms::kWind)) WindBand(model, params, state, band);
 #pragma omp barrier
     GatherBand(model, params, state, band, terms, forces);
     if (after_row) {

@@ -30,9 +30,32 @@ struct RowBand {
   int begin = 0, end = 0;
 };
 
-/// Which forces to sum: all of them, or all but the springs (for integrators that solve the
-/// springs themselves as constraints).
-enum class ForceTerms { kAll, kExternal };
+/// m: the shortest spring length divided by. A shorter spring has no direction: its force,
+/// Jacobian block and projection target are taken as zero, and 1 / kShortestSpring^2 stays
+/// finite in float.
+inline constexpr float kShortestSpring = 1e-9f;
+
+/// Which forces an evaluation sums, as flags that combine (after MuJoCo's disable flags, but set
+/// for the terms kept): an integrator that solves the springs as constraints leaves them out, one
+/// that takes friction implicitly leaves that out too. The model and parameters stay as they are.
+enum class ForceTerms : unsigned {
+  kGravity = 1u << 0,   ///< m_i g
+  kSprings = 1u << 1,   ///< every spring's stretch and damping
+  kFriction = 1u << 2,  ///< air friction -friction m_i v_i
+  kWind = 1u << 3,      ///< the faces' wind
+  kAll = kGravity | kSprings | kFriction | kWind,
+};
+constexpr ForceTerms operator|(ForceTerms a, ForceTerms b) {
+  return static_cast<ForceTerms>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
+}
+/// `terms` less those of `dropped`.
+constexpr ForceTerms Without(ForceTerms terms, ForceTerms dropped) {
+  return static_cast<ForceTerms>(static_cast<unsigned>(terms) & ~static_cast<unsigned>(dropped));
+}
+/// Whether `terms` holds every term of `term`.
+constexpr bool Includes(ForceTerms terms, ForceTerms term) {
+  return (static_cast<unsigned>(terms) & static_cast<unsigned>(term)) == static_cast<unsigned>(term);
+}
 
 template <typename Real>
 class ForceEvaluator {

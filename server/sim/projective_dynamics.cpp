@@ -57,9 +57,6 @@
 namespace flagsim::sim {
 namespace {
 
-/// m: the shortest length divided by; a shorter spring's target is 0.
-constexpr float kShortest = 1e-9f;
-
 /// Springs a -> a + offset for a in [begin, end): t = k (d - l e / |e|), d from the step's start
 /// positions (x, y, z), e from the iterate (px, py, pz), l = L + slack (|e| - L) when |e| < L
 /// and L otherwise (the top of this file).
@@ -71,7 +68,7 @@ void SpringTargetKernel(const Real* __restrict x, const Real* __restrict y, cons
   for (int a = begin; a < end; ++a) {
     const int b = a + offset;
     const Real ex = px[b] - px[a], ey = py[b] - py[a], ez = pz[b] - pz[a];
-    const Real length = std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortest));
+    const Real length = std::max(std::sqrt(ex * ex + ey * ey + ez * ez), Real(kShortestSpring));
     const Real give = length < rest ? slack : Real(0);
     const Real scale = (rest + give * (length - rest)) / length;
     tx[a] = k * ((x[b] - x[a]) - scale * ex);
@@ -92,7 +89,8 @@ void TransverseDampingKernel(const Real* __restrict x, const Real* __restrict y,
     const int b = a + offset;
     const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
     const Real dvx = vx[b] - vx[a], dvy = vy[b] - vy[a], dvz = vz[b] - vz[a];
-    const Real length_squared = std::max(dx * dx + dy * dy + dz * dz, Real(kShortest * kShortest));
+    const Real length_squared =
+        std::max(dx * dx + dy * dy + dz * dz, Real(kShortestSpring * kShortestSpring));
     const Real along = (dvx * dx + dvy * dy + dvz * dz) / length_squared;
     tx[a] = -damping * (dvx - along * dx);
     ty[a] = -damping * (dvy - along * dy);
@@ -143,13 +141,11 @@ class ProjectiveDynamics : public Integrator<Real> {
   void Reset() override { laplacian_.Clear(); }
 
  private:
-  /// Gravity and wind at the step's start: every force but the springs' and friction.
+  /// Gravity and wind at the step's start: every force but the springs' and friction (the
+  /// global step's matrix holds both).
   void ExternalForces(const StepContext<Real>& context, const ClothState<Real>& state) {
-    external_model_ = context.model;
-    external_model_.families.clear();
-    external_params_ = context.params;
-    external_params_.friction = 0;
-    context.evaluator.Evaluate(external_model_, external_params_, context.wind, state, state.time, &forces_);
+    context.evaluator.Evaluate(context.model, context.params, context.wind, state, state.time, &forces_,
+                               ForceTerms::kGravity | ForceTerms::kWind);
   }
 
   /// Adds the explicit part of the spring damping to f_ext (see the top of this file): every
@@ -279,9 +275,7 @@ class ProjectiveDynamics : public Integrator<Real> {
   }
 
   SpringLaplacian<Real> laplacian_;
-  ClothModel<Real> external_model_;  ///< the model without springs
-  SimParams external_params_;        ///< the parameters without friction
-  NodeForces<Real> forces_;          ///< f_ext
+  NodeForces<Real> forces_;  ///< f_ext
   NodeVectors<Real> iterate_, momentum_, rhs_, displacement_;
   std::vector<NodeVectors<Real>> targets_;  ///< t per spring, per family, at the spring's first node
 };

@@ -13,6 +13,7 @@
 
 #include "integrator.hpp"
 #include "node_update.hpp"
+#include "node_vectors.hpp"
 
 namespace flagsim::sim {
 namespace {
@@ -45,47 +46,35 @@ class Rk4 : public Integrator<Real> {
   }
 
  private:
-  void Resize(size_t n) {
-    for (std::vector<Real>* sum : {&sum_vx_, &sum_vy_, &sum_vz_, &sum_fx_, &sum_fy_, &sum_fz_})
-      sum->resize(n);
+  void Resize(int n) {
+    for (NodeVectors<Real>* vectors : {&sum_v_, &sum_f_, &zero_}) vectors->Resize(n);
   }
 
-  // sums += weight (stage v, stage F), then the stage becomes base + next (v, M^-1 F).
+  // sums += weight (stage v, stage F), from 0 at the first stage; then the stage becomes
+  // base + next (v, M^-1 F).
   void Accumulate(const ClothModel<Real>& model, int threads, Real weight, bool first,
                   const ClothState<Real>& base, Real next) {
-    ForEachNode(model.rows, model.cols, threads, [&](int i) {
-      sum_vx_[i] = (first ? Real(0) : sum_vx_[i]) + weight * stage_.vx[i];
-      sum_vy_[i] = (first ? Real(0) : sum_vy_[i]) + weight * stage_.vy[i];
-      sum_vz_[i] = (first ? Real(0) : sum_vz_[i]) + weight * stage_.vz[i];
-      sum_fx_[i] = (first ? Real(0) : sum_fx_[i]) + weight * forces_.x[i];
-      sum_fy_[i] = (first ? Real(0) : sum_fy_[i]) + weight * forces_.y[i];
-      sum_fz_[i] = (first ? Real(0) : sum_fz_[i]) + weight * forces_.z[i];
-      const Real a = next * model.inverse_mass[i];
-      stage_.x[i] = base.x[i] + next * stage_.vx[i];
-      stage_.y[i] = base.y[i] + next * stage_.vy[i];
-      stage_.z[i] = base.z[i] + next * stage_.vz[i];
-      stage_.vx[i] = base.vx[i] + a * forces_.x[i];
-      stage_.vy[i] = base.vy[i] + a * forces_.y[i];
-      stage_.vz[i] = base.vz[i] + a * forces_.z[i];
+    ForEachRow(model.rows, model.cols, threads, [&](NodeRange row) {
+      Drift(row, weight, Velocities(stage_), Arrays(first ? zero_ : sum_v_), Arrays(&sum_v_));
+      Drift(row, weight, Arrays(forces_), Arrays(first ? zero_ : sum_f_), Arrays(&sum_f_));
+      Drift(row, next, Velocities(stage_), Positions(base), Positions(&stage_));
+      Kick(row, next, model.inverse_mass, Arrays(forces_), Velocities(base), Velocities(&stage_));
     });
   }
 
   // y <- y + h/6 sums.
   void Finish(const ClothModel<Real>& model, int threads, Real sixth, ClothState<Real>* state) {
-    ForEachNode(model.rows, model.cols, threads, [&](int i) {
-      const Real a = sixth * model.inverse_mass[i];
-      state->x[i] += sixth * sum_vx_[i];
-      state->y[i] += sixth * sum_vy_[i];
-      state->z[i] += sixth * sum_vz_[i];
-      state->vx[i] += a * sum_fx_[i];
-      state->vy[i] += a * sum_fy_[i];
-      state->vz[i] += a * sum_fz_[i];
+    ForEachRow(model.rows, model.cols, threads, [&](NodeRange row) {
+      Drift(row, sixth, Arrays(sum_v_), Positions(*state), Positions(state));
+      Kick(row, sixth, model.inverse_mass, Arrays(sum_f_), Velocities(*state), Velocities(state));
     });
   }
 
   ClothState<Real> stage_;
   NodeForces<Real> forces_;
-  std::vector<Real> sum_vx_, sum_vy_, sum_vz_, sum_fx_, sum_fy_, sum_fz_;
+  NodeVectors<Real> sum_v_;  ///< m/s, the weighted sum of the stages' velocities
+  NodeVectors<Real> sum_f_;  ///< N, the weighted sum of the stages' forces
+  NodeVectors<Real> zero_;   ///< what the sums start from
 };
 
 }  // namespace

@@ -14,8 +14,6 @@ bool GridChanged(const SimParams& a, const SimParams& b) {
          a.imperfection != b.imperfection;
 }
 
-constexpr int kMaxSubsteps = 1 << 16;
-
 std::string Format(const char* format, double value) {
   char text[96];
   std::snprintf(text, sizeof(text), format, value);
@@ -66,7 +64,7 @@ int SubstepsForRange(const SimParams& least, const SimParams& most) {
   const double stable =
       Simulation<double>::kSafety * MakeIntegrator<double>(most.integrator)->StableStep(bound);
   const double needed = std::ceil(most.dt / stable);
-  return static_cast<int>(std::clamp(needed, 1.0, double(kMaxSubsteps)));
+  return static_cast<int>(std::clamp(needed, 1.0, double(kMaxComputedSubsteps)));
 }
 
 template <typename Real>
@@ -164,7 +162,7 @@ void Simulation<Real>::SetControls(const SimParams& controls, const WindSettings
 
 template <typename Real>
 void Simulation<Real>::SetSubsteps(int substeps) {
-  substeps_ = std::clamp(substeps, 1, kMaxSubsteps);
+  substeps_ = std::clamp(substeps, 1, kMaxComputedSubsteps);
 }
 
 template <typename Real>

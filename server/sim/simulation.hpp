@@ -57,6 +57,15 @@ struct SimulationSnapshot {
   bool sleeping = false;
 };
 
+/// Substeps per step a flag may ask for or need (the `substeps` parameter, or what SubstepsFor
+/// finds at the settings a scene or its keyframes reach): beyond, no server keeps up, and the
+/// parameter table and the timeline refuse such settings.
+inline constexpr int kMaxSubsteps = 4096;
+/// Substeps per step (before the guard's factor) that SubstepsFor returns and SetSubsteps
+/// accepts at most. Above kMaxSubsteps on purpose: a flag past that limit gets its need computed
+/// as it is, so that the check against kMaxSubsteps reports it rather than a clamped value.
+inline constexpr int kMaxComputedSubsteps = 1 << 16;
+
 /// Substeps per step that `params` asks for: its `substeps` or, when that is 0, enough to stay
 /// within the integrator's stability limit on the grid's frequency bound (with kSafety).
 int SubstepsFor(const SimParams& params);
@@ -76,7 +85,7 @@ class Simulation {
   static constexpr int kCheckpointInterval = 16;   ///< steps
   static constexpr double kRunawaySpeed = 1000.0;  ///< m/s: any node faster is a blow-up
   static constexpr double kRunawayStretch = 5.0;   ///< a structural spring this many times its rest length
-  static constexpr int kMaxGuardFactor = 16;
+  static constexpr int kMaxGuardFactor = 16;       ///< the most the guard multiplies the substeps by
   /// Where an explicit integrator goes when even kMaxGuardFactor times the substeps fail.
   static constexpr IntegratorKind kStableFallback = IntegratorKind::kXpbd;
   // Float rounding alone keeps the stiffest modes of a resting flag jittering at about 1e-3 m/s

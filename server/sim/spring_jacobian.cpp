@@ -8,9 +8,6 @@
 namespace flagsim::sim {
 namespace {
 
-/// m: the shortest length divided by; a shorter spring gets u = 0 (no axial block).
-constexpr float kShortest = 1e-9f;
-
 // Every array is a __restrict parameter so that the loops over a grid row vectorise.
 
 /// Blocks of springs a -> a + offset for a in [begin, end), from h^2 k and h c; h^2 k is the
@@ -24,7 +21,7 @@ void BlockKernel(const Real* __restrict x, const Real* __restrict y, const Real*
     const int b = a + offset;
     const Real dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
     const Real length_squared = dx * dx + dy * dy + dz * dz;
-    const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortest));
+    const Real inverse = Real(1) / std::max(std::sqrt(length_squared), Real(kShortestSpring));
     const Real h2k = length_squared * inverse < rest ? h2k_compressed : h2k_stretched;
     const Real alpha = std::max(Real(0), Real(1) - rest * inverse);
     ux[a] = dx * inverse;

@@ -8,25 +8,10 @@
 #include <limits>
 
 #include "integrator.hpp"
+#include "node_update.hpp"
 
 namespace flagsim::sim {
 namespace {
-
-/// v += a_scale m^-1 f; x += h v over n nodes (restrict parameters, so that the loop vectorises).
-template <typename Real>
-void KickDrift(Real* __restrict x, Real* __restrict y, Real* __restrict z, Real* __restrict vx,
-               Real* __restrict vy, Real* __restrict vz, const Real* __restrict fx, const Real* __restrict fy,
-               const Real* __restrict fz, const Real* __restrict inverse_mass, int n, Real kick, Real h) {
-  for (int i = 0; i < n; ++i) {
-    const Real a = kick * inverse_mass[i];
-    vx[i] += a * fx[i];
-    vy[i] += a * fy[i];
-    vz[i] += a * fz[i];
-    x[i] += h * vx[i];
-    y[i] += h * vy[i];
-    z[i] += h * vz[i];
-  }
-}
 
 template <typename Real>
 class SymplecticEuler : public Integrator<Real> {
@@ -40,10 +25,9 @@ class SymplecticEuler : public Integrator<Real> {
     const Real step = Real(h);
     // Each row is updated as soon as its forces are summed, while they are in cache.
     const auto update_row = [&](int r) {
-      const int i = r * model.cols;
-      KickDrift(&state->x[i], &state->y[i], &state->z[i], &state->vx[i], &state->vy[i], &state->vz[i],
-                &forces_.x[i], &forces_.y[i], &forces_.z[i], &model.inverse_mass[i], model.cols, step * scale,
-                step);
+      const NodeRange row{r * model.cols, (r + 1) * model.cols};
+      Kick(row, step * scale, model.inverse_mass, Arrays(forces_), Velocities(*state), Velocities(state));
+      Drift(row, step, Velocities(*state), Positions(*state), Positions(state));  // with the new v
     };
     context.evaluator.Evaluate(model, context.params, context.wind, *state, state->time, &forces_,
                                ForceTerms::kAll, update_row);

@@ -7,13 +7,6 @@
 namespace flagsim::sim {
 namespace {
 
-double Dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double Length(const Vec3& v) { return std::sqrt(Dot(v, v)); }
-Vec3 Scaled(const Vec3& v, double factor) { return {v[0] * factor, v[1] * factor, v[2] * factor}; }
-Vec3 Cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
 /// The keys of one control's track around a position: `from` the last at or before it, `to`
 /// the first after it, `before` the track's key before `from`, `after` its key after `to`;
 /// -1 where there is none.

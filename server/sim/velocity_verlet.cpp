@@ -14,6 +14,7 @@
 
 #include "integrator.hpp"
 #include "node_update.hpp"
+#include "node_vectors.hpp"
 
 namespace flagsim::sim {
 namespace {
@@ -28,25 +29,15 @@ class VelocityVerlet : public Integrator<Real> {
     const Real step = Real(h), half = Real(h / 2);
     // Kick and drift; the state's velocity becomes the predictor v + h a_n for the evaluation,
     // and v' is kept aside.
-    ForEachNode(model.rows, model.cols, threads, [&](int i) {
-      const Real a = model.inverse_mass[i];
-      half_vx_[i] = state->vx[i] + half * a * forces_.x[i];
-      half_vy_[i] = state->vy[i] + half * a * forces_.y[i];
-      half_vz_[i] = state->vz[i] + half * a * forces_.z[i];
-      state->x[i] += step * half_vx_[i];
-      state->y[i] += step * half_vy_[i];
-      state->z[i] += step * half_vz_[i];
-      state->vx[i] += step * a * forces_.x[i];
-      state->vy[i] += step * a * forces_.y[i];
-      state->vz[i] += step * a * forces_.z[i];
+    ForEachRow(model.rows, model.cols, threads, [&](NodeRange row) {
+      Kick(row, half, model.inverse_mass, Arrays(forces_), Velocities(*state), Arrays(&half_v_));
+      Drift(row, step, Arrays(half_v_), Positions(*state), Positions(state));
+      Kick(row, step, model.inverse_mass, Arrays(forces_), Velocities(*state), Velocities(state));
     });
     state->time += h;
     Evaluate(context, *state, state->time);
-    ForEachNode(model.rows, model.cols, threads, [&](int i) {
-      const Real a = half * model.inverse_mass[i];
-      state->vx[i] = half_vx_[i] + a * forces_.x[i];
-      state->vy[i] = half_vy_[i] + a * forces_.y[i];
-      state->vz[i] = half_vz_[i] + a * forces_.z[i];
+    ForEachRow(model.rows, model.cols, threads, [&](NodeRange row) {
+      Kick(row, half, model.inverse_mass, Arrays(forces_), Arrays(half_v_), Velocities(state));
     });
   }
 
@@ -61,16 +52,13 @@ class VelocityVerlet : public Integrator<Real> {
  private:
   void Evaluate(const StepContext<Real>& context, const ClothState<Real>& state, double t) {
     context.evaluator.Evaluate(context.model, context.params, context.wind, state, t, &forces_);
-    const size_t n = context.model.num_nodes();
-    half_vx_.resize(n);
-    half_vy_.resize(n);
-    half_vz_.resize(n);
+    half_v_.Resize(context.model.num_nodes());
     have_forces_ = true;
   }
 
   bool have_forces_ = false;
-  NodeForces<Real> forces_;  ///< F at the end of the last substep
-  std::vector<Real> half_vx_, half_vy_, half_vz_;
+  NodeForces<Real> forces_;   ///< F at the end of the last substep
+  NodeVectors<Real> half_v_;  ///< m/s, v' = v + h/2 a_n
 };
 
 }  // namespace

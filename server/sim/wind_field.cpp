@@ -5,8 +5,6 @@
 namespace flagsim::sim {
 namespace {
 
-double Speed(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
 /// splitmix64's finaliser: a well-mixed 64-bit hash of one integer.
 uint64_t Mix(uint64_t value) {
   value += 0x9e3779b97f4a7c15ull;
@@ -77,7 +75,7 @@ double WindField::Gust(double t) const {
 // T / 2 + (t - t0 - T).
 double WindField::Carried(double t) const {
   const double elapsed = t - ramp_start_, ramp = to_.ramp_time;
-  const double from = Speed(from_.velocity), to = Speed(to_.velocity);
+  const double from = Length(from_.velocity), to = Length(to_.velocity);
   double ramped = elapsed;  // the integral of a
   if (elapsed <= 0) {
     ramped = 0;
@@ -97,7 +95,7 @@ Vec3 WindField::At(double t, double s) const {
 
 void WindField::Along(double t, const double* s, int count, Vec3* out) const {
   const Vec3 mean = Mean(t);
-  const double amplitude = Gust(t) * Speed(mean);
+  const double amplitude = Gust(t) * Length(mean);
   const double carried = amplitude == 0 ? 0 : Carried(t);
   NoiseCursor noise[3] = {NoiseCursor(seed_ + 0x51ed27), NoiseCursor(seed_ + 0x51ed27 * 2),
                           NoiseCursor(seed_ + 0x51ed27 * 3)};

@@ -2,12 +2,11 @@
 // time, plus gusts of seeded, smooth noise that travel down the flag with the mean wind.
 #pragma once
 
-#include <array>
 #include <cstdint>
 
-namespace flagsim::sim {
+#include "vec3.hpp"
 
-using Vec3 = std::array<double, 3>;
+namespace flagsim::sim {
 
 struct WindSettings {
   Vec3 velocity{6.0, 0.0, 1.5};  ///< m/s, world frame

@@ -38,8 +38,8 @@ class Xpbd : public Integrator<Real> {
   void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) override {
     const ClothModel<Real>& model = context.model;
     context.evaluator.Evaluate(model, context.params, context.wind, *state, state->time, &forces_,
-                               ForceTerms::kExternal);
-    Predict(model, context.params.threads, Real(h), *state);
+                               Without(ForceTerms::kAll, ForceTerms::kSprings));
+    Predict(model, context.params.threads, Real(h), state);
     lambda_.resize(model.families.size());
     for (std::vector<Real>& lambda : lambda_) lambda.assign(model.num_nodes(), Real(0));
     Solve(model, context.params, Real(h), *state);
@@ -50,14 +50,13 @@ class Xpbd : public Integrator<Real> {
   double StableStep(const FrequencyBound&) const override { return std::numeric_limits<double>::infinity(); }
 
  private:
-  // p = x + h (v + h M^-1 F_ext)
-  void Predict(const ClothModel<Real>& model, int threads, Real h, const ClothState<Real>& state) {
+  // v~ = v + h M^-1 F_ext, in the state's velocities until Finish replaces them; p = x + h v~.
+  void Predict(const ClothModel<Real>& model, int threads, Real h, ClothState<Real>* state) {
     for (std::vector<Real>* p : {&px_, &py_, &pz_}) p->resize(model.num_nodes());
-    ForEachNode(model.rows, model.cols, threads, [&](int i) {
-      const Real a = h * model.inverse_mass[i];
-      px_[i] = state.x[i] + h * (state.vx[i] + a * forces_.x[i]);
-      py_[i] = state.y[i] + h * (state.vy[i] + a * forces_.y[i]);
-      pz_[i] = state.z[i] + h * (state.vz[i] + a * forces_.z[i]);
+    const NodeArrays<Real> predicted{px_.data(), py_.data(), pz_.data()};
+    ForEachRow(model.rows, model.cols, threads, [&](NodeRange row) {
+      Kick(row, h, model.inverse_mass, Arrays(forces_), Velocities(*state), Velocities(state));
+      Drift(row, h, Velocities(*state), Positions(*state), predicted);
     });
   }
 
@@ -125,13 +124,15 @@ class Xpbd : public Integrator<Real> {
   // v = (p - x) / h; x = p
   void Finish(const ClothModel<Real>& model, int threads, Real h, ClothState<Real>* state) {
     const Real inverse_h = Real(1) / h;
-    ForEachNode(model.rows, model.cols, threads, [&](int i) {
-      state->vx[i] = (px_[i] - state->x[i]) * inverse_h;
-      state->vy[i] = (py_[i] - state->y[i]) * inverse_h;
-      state->vz[i] = (pz_[i] - state->z[i]) * inverse_h;
-      state->x[i] = px_[i];
-      state->y[i] = py_[i];
-      state->z[i] = pz_[i];
+    ForEachRow(model.rows, model.cols, threads, [&](NodeRange row) {
+      for (int i = row.begin; i < row.end; ++i) {
+        state->vx[i] = (px_[i] - state->x[i]) * inverse_h;
+        state->vy[i] = (py_[i] - state->y[i]) * inverse_h;
+        state->vz[i] = (pz_[i] - state->z[i]) * inverse_h;
+        state->x[i] = px_[i];
+        state->y[i] = py_[i];
+        state->z[i] = pz_[i];
+      }
     });
   }
 

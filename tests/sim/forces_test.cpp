@@ -149,6 +149,39 @@ TEST(Forces, RelativeWindSubtractsTheClothVelocity) {
   for (int i = 0; i < model.num_nodes(); ++i) EXPECT_NEAR(forces.z[i], 0, 1e-12);
 }
 
+// Leaving a term out is the same, bit for bit, as evaluating a flag that lacks it: springs as a
+// model without spring families, friction as parameters with none.
+TEST(Forces, TermsLeftOutAreAsIfTheFlagLackedThem) {
+  SimParams params;
+  params.cols = 13;
+  params.rows = 9;
+  const ClothModel<float> model = BuildClothModel<float>(params);
+  ClothState<float> state = RestState(model);
+  for (int i = 0; i < model.num_nodes(); ++i) {
+    state.z[i] = 0.05f * std::sin(0.37f * i);
+    state.vy[i] = -0.3f * std::cos(0.23f * i);
+  }
+  const WindField wind(WindSettings{{6, 0, 1.5}, 0.3, 0});
+  ClothModel<float> springless = model;
+  springless.families.clear();
+  SimParams frictionless = params;
+  frictionless.friction = 0;
+  const struct {
+    ForceTerms terms;
+    const SimParams& lacking_params;
+  } cases[] = {{Without(ForceTerms::kAll, ForceTerms::kSprings), params},
+               {ForceTerms::kGravity | ForceTerms::kWind, frictionless}};
+  for (const auto& each : cases) {
+    ForceEvaluator<float> evaluator, reference_evaluator;
+    NodeForces<float> forces, reference;
+    evaluator.Evaluate(model, params, wind, state, 0.4, &forces, each.terms);
+    reference_evaluator.Evaluate(springless, each.lacking_params, wind, state, 0.4, &reference);
+    EXPECT_EQ(forces.x, reference.x);
+    EXPECT_EQ(forces.y, reference.y);
+    EXPECT_EQ(forces.z, reference.z);
+  }
+}
+
 TEST(Forces, SameForcesAtAnyThreadCount) {
   SimParams params;
   params.cols = 37;
