@@ -9,6 +9,23 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+/// The weights k of a pair's closest points (the pair's impulse weights, self_collision.hpp):
+/// point-triangle (p, a, b, c): 1, -w_a, -w_b, -w_c; edge-edge (p0, p1, q0, q1): 1 - s, s,
+/// -(1 - t), -t.
+std::array<double, 4> ClosestWeights(bool edges, const std::array<Point, 4>& p) {
+  if (edges) {
+    const SegmentParameters c = ClosestOnSegments(p[0], p[1], p[2], p[3]);
+    return {1 - c.s, c.s, -(1 - c.t), -c.t};
+  }
+  const Eigen::Vector3d w = ClosestOnTriangle(p[0], p[1], p[2], p[3]);
+  return {1, -w[0], -w[1], -w[2]};
+}
+
+/// sum k_i p_i: from the second primitive's closest point to the first's.
+Point Gap(const std::array<double, 4>& k, const std::array<Point, 4>& p) {
+  return k[0] * p[0] + k[1] * p[1] + k[2] * p[2] + k[3] * p[3];
+}
+
 }  // namespace
 
 template <typename Real>
@@ -92,13 +109,12 @@ void SelfCollision<Real>::SweptBoxes() {
   triangle_box_.resize(mesh_.triangles.size());
   for (size_t t = 0; t < mesh_.triangles.size(); ++t) {
     const auto [a, b, c] = mesh_.triangles[t];
-    triangle_box_[t] = {node_box_[a].lo.cwiseMin(node_box_[b].lo).cwiseMin(node_box_[c].lo),
-                        node_box_[a].hi.cwiseMax(node_box_[b].hi).cwiseMax(node_box_[c].hi)};
+    triangle_box_[t] = node_box_[a].Joined(node_box_[b]).Joined(node_box_[c]);
   }
   edge_box_.resize(mesh_.edges.size());
   for (size_t e = 0; e < mesh_.edges.size(); ++e) {
     const auto [a, b] = mesh_.edges[e];
-    edge_box_[e] = {node_box_[a].lo.cwiseMin(node_box_[b].lo), node_box_[a].hi.cwiseMax(node_box_[b].hi)};
+    edge_box_[e] = node_box_[a].Joined(node_box_[b]);
   }
 }
 
@@ -159,15 +175,11 @@ void SelfCollision<Real>::RegionBounds() {
     if (region.leaf()) {
       const ClothPatch& patch = patches_.patches[region.patch];
       Box box{Point::Constant(INFINITY), Point::Constant(-INFINITY)};
-      for (int t : patch.triangles) {
-        box.lo = box.lo.cwiseMin(triangle_box_[t].lo);
-        box.hi = box.hi.cwiseMax(triangle_box_[t].hi);
-      }
+      for (int t : patch.triangles) box = box.Joined(triangle_box_[t]);
       region_box_[r] = box;
       region_cone_[r] = PatchCone(patch);
     } else {
-      const Box &a = region_box_[region.left], &b = region_box_[region.right];
-      region_box_[r] = {a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi)};
+      region_box_[r] = region_box_[region.left].Joined(region_box_[region.right]);
       region_cone_[r] = Union(region_cone_[region.left], region_cone_[region.right]);
     }
   }
@@ -304,16 +316,9 @@ template <typename Real>
 void SelfCollision<Real>::Proximity() {
   for (const Pair& pair : candidates_) {
     const std::array<int, 4> n = Nodes(pair);
-    std::array<double, 4> k;
-    Point gap;
-    if (pair.edges) {
-      const SegmentParameters c = ClosestOnSegments(Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3]));
-      k = {1 - c.s, c.s, -(1 - c.t), -c.t};
-    } else {
-      const Eigen::Vector3d w = ClosestOnTriangle(Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3]));
-      k = {1, -w[0], -w[1], -w[2]};
-    }
-    gap = k[0] * Start(n[0]) + k[1] * Start(n[1]) + k[2] * Start(n[2]) + k[3] * Start(n[3]);
+    const std::array<Point, 4> start{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])};
+    const std::array<double, 4> k = ClosestWeights(pair.edges, start);
+    const Point gap = Gap(k, start);
     const double distance = gap.norm();
     if (distance >= thickness_ || distance == 0) continue;
     const Point normal = gap / distance;
@@ -342,19 +347,10 @@ int SelfCollision<Real>::Contacts(bool hold) {
       continue;
     }
     const std::array<Point, 4> at = points.At(*when);
-    std::array<double, 4> k;
-    Point normal, start_gap;
-    if (pair.edges) {
-      const SegmentParameters c = ClosestOnSegments(at[0], at[1], at[2], at[3]);
-      k = {1 - c.s, c.s, -(1 - c.t), -c.t};
-      normal = (at[1] - at[0]).cross(at[3] - at[2]);
-    } else {
-      const Eigen::Vector3d w = ClosestOnTriangle(at[0], at[1], at[2], at[3]);
-      k = {1, -w[0], -w[1], -w[2]};
-      normal = (at[2] - at[1]).cross(at[3] - at[1]);
-    }
-    start_gap =
-        k[0] * points.start[0] + k[1] * points.start[1] + k[2] * points.start[2] + k[3] * points.start[3];
+    const std::array<double, 4> k = ClosestWeights(pair.edges, at);
+    Point normal = pair.edges ? Point((at[1] - at[0]).cross(at[3] - at[2]))
+                              : Point((at[2] - at[1]).cross(at[3] - at[1]));
+    const Point start_gap = Gap(k, points.start);
     if (normal.squaredNorm() < 1e-24) normal = start_gap;  // parallel edges: part them as they began
     if (normal.dot(start_gap) < 0) normal = -normal;       // from the side each began on
     if (normal.squaredNorm() == 0 || !Push(n, k, normal.normalized(), 0.1 * thickness_ / dt_)) continue;

@@ -80,6 +80,7 @@ class SelfCollision {
   };
   struct Box {
     Point lo, hi;
+    Box Joined(const Box& other) const { return {lo.cwiseMin(other.lo), hi.cwiseMax(other.hi)}; }
     bool Overlaps(const Box& other) const {
       return (lo.array() <= other.hi.array()).all() && (other.lo.array() <= hi.array()).all();
     }

@@ -190,9 +190,8 @@ void Simulation<Real>::Step() {
     return;
   }
   if (state_.step % kCheckpointInterval == 0) Checkpoint();
-  Advance();
   double fastest = 0;
-  const std::string problem = Problem(&fastest);
+  const std::string problem = Advance(&fastest);
   if (!problem.empty()) {
     Recover(problem);
     calm_steps_ = 0;
@@ -234,8 +233,10 @@ void Simulation<Real>::Wake() {
   calm_steps_ = 0;
 }
 
+// The integrator's substeps, the obstacles after each, then self-collision on a sound result.
+// Returns Problem() of the end state, checked again only if the collision changed it.
 template <typename Real>
-void Simulation<Real>::Advance() {
+std::string Simulation<Real>::Advance(double* fastest) {
   const int n = substeps();
   const double start = state_.time, h = params_.dt / n;
   const StepContext<Real> context{model_, params_, wind_, evaluator_};
@@ -245,13 +246,16 @@ void Simulation<Real>::Advance() {
     integrator_->Substep(context, h, &state_);
     PushOutOfObstacles(model_, obstacles, &state_);
   }
-  // A state already running away is the guard's to roll back, not worth colliding: its swept
-  // boxes would cover everything.
-  if (params_.self_collision && Problem().empty()) {
-    self_collision_->Resolve(model_, params_, params_.dt, step_start_, &state_);
-  }
   state_.time = start + params_.dt;
   ++state_.step;
+  // A state already running away is the guard's to roll back, not worth colliding: its swept
+  // boxes would cover everything.
+  std::string problem = Problem(fastest);
+  if (problem.empty() && params_.self_collision &&
+      self_collision_->Resolve(model_, params_, params_.dt, step_start_, &state_)) {
+    problem = Problem(fastest);
+  }
+  return problem;
 }
 
 template <typename Real>
@@ -297,10 +301,7 @@ void Simulation<Real>::Recover(const std::string& problem) {
     state_ = checkpoint_;
     integrator_->Reset();
     std::string again;
-    while (again.empty() && state_.step < target) {
-      Advance();
-      again = Problem();
-    }
+    while (again.empty() && state_.step < target) again = Advance();
     if (again.empty()) {
       state_.time = target_time;
       break;

@@ -146,7 +146,8 @@ class Simulation {
  private:
   void BuildModel();
   void ChooseIntegrator();
-  void Advance();
+  /// One step of substeps and corrections; returns Problem() of the result.
+  std::string Advance(double* fastest = nullptr);
   /// "" if the state is sound, else what is wrong with it; `fastest` gets the top node speed.
   std::string Problem(double* fastest = nullptr) const;
   void WatchForSleep(double fastest);
