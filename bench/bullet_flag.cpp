@@ -92,7 +92,7 @@ void BulletFlag::AddFaces(const sim::ClothModel<double>& model) {
 
 // Gravity, air friction, wind and solver as the header describes.
 void BulletFlag::Configure(const sim::SimParams& params, const sim::WindSettings& wind, int iterations) {
-  const btVector3 gravity(0, btScalar(-params.gravity), 0);
+  const btVector3 gravity(0, btScalar(-params.forces.gravity), 0);
   world_.setGravity(gravity);
   world_.getWorldInfo().m_gravity = gravity;
   world_.getWorldInfo().air_density = btScalar(kAirDensity);
@@ -100,9 +100,9 @@ void BulletFlag::Configure(const sim::SimParams& params, const sim::WindSettings
   const double speed_squared = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
   btSoftBody::Config& config = body_->m_cfg;
   config.piterations = iterations;
-  config.kDP = btScalar(1 - std::exp(-params.friction * h_));
+  config.kDP = btScalar(1 - std::exp(-params.forces.friction * h_));
   config.aeromodel = btSoftBody::eAeroModel::F_TwoSided;
-  config.kLF = btScalar(params.wind_coefficient / (2 * kAirDensity * speed_squared));
+  config.kLF = btScalar(params.forces.wind_coefficient / (2 * kAirDensity * speed_squared));
   config.kDG = 0;
   body_->setWindVelocity(btVector3(btScalar(w[0]), btScalar(w[1]), btScalar(w[2])));
 }

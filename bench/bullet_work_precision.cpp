@@ -83,7 +83,7 @@ void PrintModelDifferences(const lab::WorkPrecisionScene& scene, const sim::Clot
   lab::Trial trial = scene.trial;
   trial.wind.gust = 0;
   PrintModelDifference(scene, trial, bullet, "with the gusts off:");
-  trial.params.damping = 0;
+  trial.params.forces.damping = 0;
   PrintModelDifference(scene, trial, bullet, "and no spring damping:");
   trial.params.relative_wind = true;
   PrintModelDifference(scene, trial, bullet, "and the relative wind w - v:");

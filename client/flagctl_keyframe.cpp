@@ -17,8 +17,8 @@ void AddKeyOptions(CLI::App* command, KeyframeArguments* arguments) {
   command->add_option("--gust", arguments->gust, "gust strength, fraction of the wind speed (0 .. 1)")
       ->needs(wind);
   command->add_option("--set", arguments->assignments,
-                      "NAME=VALUE: an animatable parameter (stiffness, shear_stiffness, bend_stiffness, "
-                      "damping, friction, wind_coefficient, gravity)");
+                      "NAME=VALUE: a coefficient of the forces (a parameter a key may move; the server "
+                      "names them if NAME is not one)");
   CLI::Option* eye = command->add_option("--eye", arguments->eye, "X Y Z in m: the camera")->expected(3);
   CLI::Option* target =
       command->add_option("--target", arguments->target, "X Y Z in m: looked at")->expected(3);

@@ -40,10 +40,10 @@ double Theory(sim::IntegratorKind kind, double w_max, const sim::FrequencyBound&
 
 /// The trial with structural stiffness `stiffness`, shear and bend moduli scaled alike.
 Trial Stiffened(Trial trial, double stiffness) {
-  const double scale = stiffness / trial.params.stiffness;
-  trial.params.stiffness = stiffness;
-  trial.params.shear_stiffness *= scale;
-  trial.params.bend_stiffness *= scale;
+  const double scale = stiffness / trial.params.forces.stiffness;
+  trial.params.forces.stiffness = stiffness;
+  trial.params.forces.shear_stiffness *= scale;
+  trial.params.forces.bend_stiffness *= scale;
   return trial;
 }
 

@@ -12,10 +12,14 @@ namespace {
 
 using sim::SimParams;
 
-/// A parameter stored in field `field` of member `group` of the scene.
-template <class Group, class Field>
+using sim::ForceCoefficients;
+
+/// A parameter stored where the member pointers `path` lead from the scene:
+/// scene.*path[0].*path[1]... It is animatable exactly when it is one of the forces'
+/// coefficients, the fields Simulation::SetControls takes in place.
+template <class... Members>
 Parameter Make(std::string name, std::string unit, ParameterKind kind, double min_value, double max_value,
-               Group Scene::*group, Field Group::*field, std::string description) {
+               std::string description, Members... path) {
   Parameter parameter;
   parameter.name = std::move(name);
   parameter.unit = std::move(unit);
@@ -23,12 +27,15 @@ Parameter Make(std::string name, std::string unit, ParameterKind kind, double mi
   parameter.min_value = min_value;
   parameter.max_value = max_value;
   parameter.description = std::move(description);
-  parameter.get = [group, field](const Scene& scene) { return static_cast<double>(scene.*group.*field); };
-  parameter.set = [group, field](Scene& scene, double value) {
+  parameter.animatable = (std::is_same_v<Members, double ForceCoefficients::*> || ...);
+  parameter.get = [path...](const Scene& scene) { return static_cast<double>((scene.*....*path)); };
+  parameter.set = [path...](Scene& scene, double value) {
+    auto& field = (scene.*....*path);
+    using Field = std::remove_reference_t<decltype(field)>;
     if constexpr (std::is_floating_point_v<Field>) {
-      scene.*group.*field = value;
+      field = value;
     } else {
-      scene.*group.*field = static_cast<Field>(std::llround(value));
+      field = static_cast<Field>(std::llround(value));
     }
   };
   return parameter;
@@ -37,14 +44,21 @@ Parameter Make(std::string name, std::string unit, ParameterKind kind, double mi
 template <class Field>
 Parameter Real(std::string name, std::string unit, double min_value, double max_value,
                Field SimParams::*field, std::string description) {
-  return Make(std::move(name), std::move(unit), ParameterKind::kReal, min_value, max_value, &Scene::sim,
-              field, std::move(description));
+  return Make(std::move(name), std::move(unit), ParameterKind::kReal, min_value, max_value,
+              std::move(description), &Scene::sim, field);
+}
+
+/// One of the forces' coefficients: animatable.
+Parameter Force(std::string name, std::string unit, double min_value, double max_value,
+                double ForceCoefficients::*field, std::string description) {
+  return Make(std::move(name), std::move(unit), ParameterKind::kReal, min_value, max_value,
+              std::move(description), &Scene::sim, &SimParams::forces, field);
 }
 
 Parameter Integer(std::string name, double min_value, double max_value, int SimParams::*field,
                   std::string description) {
-  return Make(std::move(name), "", ParameterKind::kInteger, min_value, max_value, &Scene::sim, field,
-              std::move(description));
+  return Make(std::move(name), "", ParameterKind::kInteger, min_value, max_value, std::move(description),
+              &Scene::sim, field);
 }
 
 std::string FormatNumber(double value) {
@@ -137,37 +151,39 @@ ParameterTable::ParameterTable() {
       Real("height", "m", 0.1, 10, &SimParams::height, "flag length down its columns (hoist)"),
       Real("mass", "kg", 0.001, 100, &SimParams::mass, "mass of the whole flag"),
       Real("pole_height", "m", 0.5, 50, &SimParams::pole_height, "height of the pole's top"),
-      Real("stiffness", "N/m", 1, 100000, &SimParams::stiffness,
-           "structural stretch modulus of the sheet (springs to row and column neighbours)"),
-      Real("shear_stiffness", "N/m", 0, 100000, &SimParams::shear_stiffness,
-           "shear modulus of the sheet (diagonal springs)"),
-      Real("bend_stiffness", "N/m", 0, 100000, &SimParams::bend_stiffness,
-           "bending modulus of the sheet (springs between nodes two apart)"),
-      Real("damping", "N s/m", 0, 100, &SimParams::damping, "damping along every spring"),
+      Force("stiffness", "N/m", 1, 100000, &ForceCoefficients::stiffness,
+            "structural stretch modulus of the sheet (springs to row and column neighbours)"),
+      Force("shear_stiffness", "N/m", 0, 100000, &ForceCoefficients::shear_stiffness,
+            "shear modulus of the sheet (diagonal springs)"),
+      Force("bend_stiffness", "N/m", 0, 100000, &ForceCoefficients::bend_stiffness,
+            "bending modulus of the sheet (springs between nodes two apart)"),
+      Force("damping", "N s/m", 0, 100, &ForceCoefficients::damping, "damping along every spring"),
       Real("compression", "", 0, 1, &SimParams::compression,
            "compressive stiffness of structural and shear springs as a fraction of their stiffness"),
       Real("imperfection", "m", 0, 0.05, &SimParams::imperfection,
            "largest out-of-plane departure of the rest state from a flat sheet, which buckling grows "
            "from; a change rebuilds the flag"),
       Real("pole_radius", "m", 0.005, 0.5, &SimParams::pole_radius,
-           "radius of the pole: a cylinder the cloth cannot enter, the hoist edge on its surface"),
+           "radius of the pole: a cylinder the cloth cannot enter, the hoist edge on its surface; a change "
+           "rebuilds the flag"),
       Real("pole_friction", "", 0, 2, &SimParams::pole_friction,
            "Coulomb friction coefficient of the cloth on the pole and the ground"),
       Real("thickness", "m", 0.0005, 0.05, &SimParams::thickness,
            "the least distance the cloth keeps from itself, the pole and the ground"),
-      Make("self_collision", "", ParameterKind::kBoolean, 0, 1, &Scene::sim, &SimParams::self_collision,
-           "the cloth does not pass through itself"),
-      Real("friction", "1/s", 0, 100, &SimParams::friction,
-           "air friction -friction m v per node (seed integrator: fraction mu of F, below 1)"),
-      Real("wind_coefficient", "N s/m^3", 0, 100, &SimParams::wind_coefficient,
-           "C in the face wind force C A n (n . w)"),
-      Make("relative_wind", "", ParameterKind::kBoolean, 0, 1, &Scene::sim, &SimParams::relative_wind,
-           "wind relative to the moving cloth (w - v_face) instead of w"),
-      Real("gravity", "m/s^2", 0, 100, &SimParams::gravity, "downward acceleration of gravity"),
+      Make("self_collision", "", ParameterKind::kBoolean, 0, 1, "the cloth does not pass through itself",
+           &Scene::sim, &SimParams::self_collision),
+      Force("friction", "1/s", 0, 100, &ForceCoefficients::friction,
+            "air friction -friction m v per node (seed integrator: fraction mu of F, below 1)"),
+      Force("wind_coefficient", "N s/m^3", 0, 100, &ForceCoefficients::wind_coefficient,
+            "C in the face wind force C A n (n . w)"),
+      Make("relative_wind", "", ParameterKind::kBoolean, 0, 1,
+           "wind relative to the moving cloth (w - v_face) instead of w", &Scene::sim,
+           &SimParams::relative_wind),
+      Force("gravity", "m/s^2", 0, 100, &ForceCoefficients::gravity, "downward acceleration of gravity"),
       Real("dt", "s", 1e-5, 0.05, &SimParams::dt,
            "step: commands apply between steps; explicit integrators substep for stability"),
       Make("integrator", "", ParameterKind::kChoice, 0, double(sim::IntegratorNames().size() - 1),
-           &Scene::sim, &SimParams::integrator, "time integrator"),
+           "time integrator", &Scene::sim, &SimParams::integrator),
       Integer("substeps", 0, sim::kMaxSubsteps, &SimParams::substeps,
               "substeps per step; 0: chosen from the integrator's stability limit"),
       Integer("solver_iterations", 1, 1000, &SimParams::solver_iterations,
@@ -176,22 +192,18 @@ ParameterTable::ParameterTable() {
            "implicit_euler: conjugate gradient stops at this residual relative to the right-hand side"),
       Integer("threads", 1, 64, &SimParams::threads,
               "worker threads for the step and the frames; a second pays from about 64 x 48 nodes up"),
-      Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, &Scene::service, &ServiceSettings::state_rate,
-           "STATE messages per second of simulated time"),
-      Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120, &Scene::service, &ServiceSettings::frame_rate,
-           "frames drawn and streamed per second of simulated time; 0: none"),
+      Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, "STATE messages per second of simulated time",
+           &Scene::service, &ServiceSettings::state_rate),
+      Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120,
+           "frames drawn and streamed per second of simulated time; 0: none", &Scene::service,
+           &ServiceSettings::frame_rate),
       Make("shading", "", ParameterKind::kChoice, 0, double(render::ShadingModeNames().size() - 1),
-           &Scene::service, &ServiceSettings::shading, "how frames are shaded"),
+           "how frames are shaded", &Scene::service, &ServiceSettings::shading),
   };
-  // The names of each choice parameter; the forces' coefficients that keyframes may move (what
-  // Simulation::SetControls takes).
+  // The names of each choice parameter.
   for (Parameter& parameter : parameters_) {
     if (parameter.name == "integrator") parameter.choices = sim::IntegratorNames();
     if (parameter.name == "shading") parameter.choices = render::ShadingModeNames();
-    for (const char* name : {"stiffness", "shear_stiffness", "bend_stiffness", "damping", "friction",
-                             "wind_coefficient", "gravity"}) {
-      parameter.animatable |= parameter.name == name;
-    }
   }
 }
 
@@ -225,7 +237,7 @@ std::string ParameterTable::Assign(const std::string& name, const std::string& t
 }
 
 std::string ParameterTable::CheckConsistency(const Scene& scene) {
-  if (scene.sim.integrator == sim::IntegratorKind::kSeed && scene.sim.friction >= 1) {
+  if (scene.sim.integrator == sim::IntegratorKind::kSeed && scene.sim.forces.friction >= 1) {
     return "friction: the seed integrator reads friction as a fraction mu of the force; allowed "
            "0 .. 1 (exclusive) with integrator=seed";
   }

@@ -135,15 +135,15 @@ SettingRange SettingsAnywhere(const Scene& scene, const sim::Timeline& timeline)
 std::string CheckReach(const sim::Timeline& timeline, const Scene& scene) {
   if (!MovesStability(timeline)) return "";
   const SettingRange reach = SettingsAnywhere(scene, timeline);
-  if (scene.sim.integrator == sim::IntegratorKind::kSeed && reach.most.friction >= 1) {
-    return "friction: the keys reach " + Number(reach.most.friction) +
+  if (scene.sim.integrator == sim::IntegratorKind::kSeed && reach.most.forces.friction >= 1) {
+    return "friction: the keys reach " + Number(reach.most.forces.friction) +
            "; the seed integrator reads friction as a fraction mu of the force; allowed 0 .. 1 "
            "(exclusive) with integrator=seed";
   }
   const int substeps = sim::SubstepsForRange(reach.least, reach.most);
   if (substeps <= sim::kMaxSubsteps) return "";
-  return "keys: at their stiffest (stiffness up to " + Number(reach.most.stiffness) +
-         " N/m, damping down to " + Number(reach.least.damping) + " N s/m) " +
+  return "keys: at their stiffest (stiffness up to " + Number(reach.most.forces.stiffness) +
+         " N/m, damping down to " + Number(reach.least.forces.damping) + " N s/m) " +
          sim::IntegratorName(scene.sim.integrator) + " needs " + std::to_string(substeps) +
          " substeps per step; allowed at most " + std::to_string(sim::kMaxSubsteps) +
          ": soften the keys, damp them more, or choose an unconditionally stable integrator (xpbd)";

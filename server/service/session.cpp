@@ -200,7 +200,7 @@ void Session::FollowTimeline() {
   if (timeline.SegmentAt(position) != substeps_segment_) FixSubsteps(position);
   const render::Camera camera = scene_.camera;
   ApplyControls(timeline.Evaluate(position), &scene_);
-  simulation_.SetControls(scene_.sim, scene_.wind);
+  simulation_.SetControls(scene_.sim.forces, scene_.wind);
   if (scene_.camera.eye != camera.eye || scene_.camera.target != camera.target ||
       scene_.camera.fov_y != camera.fov_y) {
     ++revision_;

@@ -107,15 +107,15 @@ template <typename Real>
 void SetSpringConstants(const SimParams& params, ClothModel<Real>* model) {
   const double cell_area = double(model->dx) * double(model->dy);
   for (SpringFamily<Real>& family : model->families) {
-    const double modulus = family.kind == SpringKind::kStructural ? params.stiffness
-                           : family.kind == SpringKind::kShear    ? params.shear_stiffness
-                                                                  : params.bend_stiffness;
+    const double modulus = family.kind == SpringKind::kStructural ? params.forces.stiffness
+                           : family.kind == SpringKind::kShear    ? params.forces.shear_stiffness
+                                                                  : params.forces.bend_stiffness;
     // A spring stands for a strip of sheet dx dy / L wide and L long: k = modulus dx dy / L^2.
     const double L = double(family.rest_length);
     const double scale = cell_area / (L * L);
     family.stiffness = Real(modulus * scale);
     family.compression_stiffness = Real(CompressionFraction(params, family.kind) * modulus * scale);
-    family.damping = Real(params.damping * scale);
+    family.damping = Real(params.forces.damping * scale);
   }
 }
 

@@ -221,7 +221,7 @@ void ForceEvaluator<Real>::WindBand(const ClothModel<Real>& model, const SimPara
     std::copy(column_wind_y_.begin(), column_wind_y_.end(), wind_y_.begin() + r * cols);
     std::copy(column_wind_z_.begin(), column_wind_z_.end(), wind_z_.begin() + r * cols);
   }
-  const Real share = Real(params.wind_coefficient / 6.0);
+  const Real share = Real(params.forces.wind_coefficient / 6.0);
   const Real relative = params.relative_wind ? Real(1) : Real(0);
   const struct {
     NodeForces<Real>* out;
@@ -278,7 +278,7 @@ void ForceEvaluator<Real>::GatherBand(const ClothModel<Real>& model, const SimPa
     sources.x[k] = sources.y[k] = sources.z[k] = zero_.data();
     ++k;
   }
-  const double gravity = Includes(terms, ForceTerms::kGravity) ? params.gravity : 0.0;
+  const double gravity = Includes(terms, ForceTerms::kGravity) ? params.forces.gravity : 0.0;
   const double friction = Includes(terms, ForceTerms::kFriction) ? AirFriction(params) : 0.0;
   GatherKernel(sources, model.mass.data() + first, state.vx.data() + first, state.vy.data() + first,
                state.vz.data() + first, Real(gravity), Real(friction), forces->x.data() + first,

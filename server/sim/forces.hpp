@@ -92,7 +92,7 @@ class ForceEvaluator {
 
 /// Air friction as the force law applies it: the seed's scheme replaces it by -mu F.
 inline double AirFriction(const SimParams& params) {
-  return params.integrator == IntegratorKind::kSeed ? 0.0 : params.friction;
+  return params.integrator == IntegratorKind::kSeed ? 0.0 : params.forces.friction;
 }
 
 }  // namespace flagsim::sim

@@ -3,6 +3,8 @@
 // the allowed ranges.
 #pragma once
 
+#include <cstring>
+
 namespace flagsim::sim {
 
 enum class IntegratorKind {
@@ -16,6 +18,28 @@ enum class IntegratorKind {
   kProjectiveDynamics,  ///< Liu et al. 2013 local/global, one factorisation. Unconditionally stable.
 };
 
+/// The coefficients of the forces: what may change while the flag flies, in place, without
+/// rebuilding it. Simulation::SetControls copies them whole, and the parameter table makes a
+/// parameter animatable (keyframes may move it) exactly when it lives here.
+struct ForceCoefficients {
+  // The sheet's moduli. Each spring's constant is modulus * dx * dy / L^2 (L its rest length),
+  // so the flag's response does not change when the grid is refined (see cloth_model.hpp).
+  double stiffness = 2000.0;       ///< N/m, structural springs (neighbours along rows, columns)
+  double shear_stiffness = 200.0;  ///< N/m, diagonal springs
+  double bend_stiffness = 100.0;   ///< N/m, springs between nodes two apart
+  double damping = 0.05;           ///< N s/m, along every spring, scaled like the stiffness
+
+  // Air and gravity.
+  double friction = 0.2;          ///< 1/s, air friction -friction m_i v_i (seed: fraction of F)
+  double wind_coefficient = 1.0;  ///< N s/m^3: face force C A n (n . w)
+  double gravity = 9.81;          ///< m/s^2, downward (-y)
+};
+
+/// Whether any coefficient differs, bit for bit (the struct holds doubles only, so no padding).
+inline bool operator!=(const ForceCoefficients& a, const ForceCoefficients& b) {
+  return std::memcmp(&a, &b, sizeof(ForceCoefficients)) != 0;
+}
+
 struct SimParams {
   // The flag: a grid of cols x rows nodes over width x height metres, hoist edge on the pole.
   int cols = 32;             ///< nodes along the flag (>= 2)
@@ -25,12 +49,7 @@ struct SimParams {
   double mass = 0.25;        ///< kg, the whole flag
   double pole_height = 3.0;  ///< m, the pole's top; the flag's top edge hangs just below it
 
-  // The sheet's moduli. Each spring's constant is modulus * dx * dy / L^2 (L its rest length),
-  // so the flag's response does not change when the grid is refined (see cloth_model.hpp).
-  double stiffness = 2000.0;       ///< N/m, structural springs (neighbours along rows, columns)
-  double shear_stiffness = 200.0;  ///< N/m, diagonal springs
-  double bend_stiffness = 100.0;   ///< N/m, springs between nodes two apart
-  double damping = 0.05;           ///< N s/m, along every spring, scaled like the stiffness
+  ForceCoefficients forces;  ///< the sheet's moduli, the air's friction and the wind's pressure, gravity
 
   // Cloth against compression, itself, the pole and the ground.
   double compression = 0.3;    ///< compressive stiffness of structural and shear springs, as a fraction
@@ -42,11 +61,7 @@ struct SimParams {
   double thickness = 0.004;    ///< m: the least distance the cloth keeps from itself, the pole and the ground
   bool self_collision = true;  ///< the cloth does not pass through itself
 
-  // Air and gravity.
-  double friction = 0.2;          ///< 1/s, air friction -friction m_i v_i (seed: fraction of F)
-  double wind_coefficient = 1.0;  ///< N s/m^3: face force C A n (n . w)
-  bool relative_wind = false;     ///< use w - v_face instead of w: damps flutter physically
-  double gravity = 9.81;          ///< m/s^2, downward (-y)
+  bool relative_wind = false;  ///< use w - v_face instead of w: damps flutter physically
 
   // Numerics.
   double dt = 0.002;  ///< s per step; commands apply between steps. An explicit

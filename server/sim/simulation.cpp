@@ -57,7 +57,7 @@ int SubstepsForRange(const SimParams& least, const SimParams& most) {
   ClothModel<double> model = BuildClothModel<double>(most);
   FrequencyBound bound = EstimateFrequencyBound(model, AirFriction(most));
   SimParams least_damped = most;
-  least_damped.damping = least.damping;
+  least_damped.forces.damping = least.forces.damping;
   SetSpringConstants(least_damped, &model);
   bound.stiffness_damping_ratio = StiffnessDampingRatio(model);
   bound.friction = AirFriction(least);
@@ -138,26 +138,15 @@ void Simulation<Real>::SetWind(const WindSettings& wind) {
 }
 
 template <typename Real>
-void Simulation<Real>::SetControls(const SimParams& controls, const WindSettings& wind) {
-  const bool springs =
-      controls.stiffness != params_.stiffness || controls.shear_stiffness != params_.shear_stiffness ||
-      controls.bend_stiffness != params_.bend_stiffness || controls.damping != params_.damping;
-  const bool forces = springs || controls.friction != params_.friction ||
-                      controls.wind_coefficient != params_.wind_coefficient ||
-                      controls.gravity != params_.gravity;
+void Simulation<Real>::SetControls(const ForceCoefficients& forces, const WindSettings& wind) {
+  const bool changed = forces != params_.forces;
   const WindSettings& now = wind_.target();
   const bool blows =
       wind.velocity != now.velocity || wind.gust != now.gust || wind.ramp_time != now.ramp_time;
-  params_.stiffness = controls.stiffness;
-  params_.shear_stiffness = controls.shear_stiffness;
-  params_.bend_stiffness = controls.bend_stiffness;
-  params_.damping = controls.damping;
-  params_.friction = controls.friction;
-  params_.wind_coefficient = controls.wind_coefficient;
-  params_.gravity = controls.gravity;
-  if (springs) SetSpringConstants(params_, &model_);
+  params_.forces = forces;
+  if (changed) SetSpringConstants(params_, &model_);
   if (blows) wind_.Set(wind, state_.time);
-  if (forces || blows) Wake();
+  if (changed || blows) Wake();
 }
 
 template <typename Real>

@@ -71,7 +71,7 @@ inline constexpr int kMaxComputedSubsteps = 1 << 16;
 int SubstepsFor(const SimParams& params);
 
 /// Substeps per step that keep every control setting between `least` and `most` stable (two
-/// settings of one flag that differ only in SetControls' fields): each integrator's stable
+/// settings of one flag that differ only in their ForceCoefficients): each integrator's stable
 /// step falls as the top frequency and damping rate grow, and rises with the damping ratio and
 /// friction that bound every mode's damping from below; so it is taken at the frequency and
 /// damping rate of the most stiffness, damping and friction, and at the ratio of the least
@@ -114,14 +114,13 @@ class Simulation {
   void SetWind(const WindSettings& wind);
 
   /// The light path for controls that move at every step (the keyframe timeline), between
-  /// steps: the forces' coefficients of `controls` (stiffness, shear_stiffness, bend_stiffness,
-  /// damping, friction, wind_coefficient, gravity; its other fields are ignored) and `wind`.
+  /// steps: the forces' coefficients and `wind`.
   /// Spring constants are updated in place and the wind set from now; no checkpoint is taken,
   /// no frequency estimated, and the integrator keeps what it carries between substeps (forces
   /// from the last, a factorisation), a lag of one step in coefficients that move continuously.
   /// A change wakes the flag. The substeps stay as they are: SetSubsteps chooses them for the
   /// range of settings the controls will pass through.
-  void SetControls(const SimParams& controls, const WindSettings& wind);
+  void SetControls(const ForceCoefficients& forces, const WindSettings& wind);
   /// Fixes the substeps per step (before the guard's factor) until the next SetParams.
   void SetSubsteps(int substeps);
 

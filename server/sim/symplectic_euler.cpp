@@ -21,7 +21,7 @@ class SymplecticEuler : public Integrator<Real> {
 
   void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) override {
     const ClothModel<Real>& model = context.model;
-    const Real scale = seed_friction_ ? Real(1 - context.params.friction) : Real(1);
+    const Real scale = seed_friction_ ? Real(1 - context.params.forces.friction) : Real(1);
     const Real step = Real(h);
     // Each row is updated as soon as its forces are summed, while they are in cache.
     const auto update_row = [&](int r) {

@@ -90,7 +90,7 @@ TEST(ParameterTable, AssignmentsReachTheScene) {
   EXPECT_EQ(Table().Assign("relative_wind", "on", &scene), "");
   EXPECT_EQ(Table().Assign("integrator", "seed", &scene), "");
   EXPECT_EQ(Table().Assign("state_rate", "30", &scene), "");
-  EXPECT_EQ(scene.sim.stiffness, 1234.5);
+  EXPECT_EQ(scene.sim.forces.stiffness, 1234.5);
   EXPECT_EQ(scene.sim.cols, 40);
   EXPECT_TRUE(scene.sim.relative_wind);
   EXPECT_EQ(scene.sim.integrator, sim::IntegratorKind::kSeed);
@@ -100,9 +100,9 @@ TEST(ParameterTable, AssignmentsReachTheScene) {
 TEST(ParameterTable, SeedFrictionMustBeAFraction) {
   Scene scene;
   scene.sim.integrator = sim::IntegratorKind::kSeed;
-  scene.sim.friction = 1.5;
+  scene.sim.forces.friction = 1.5;
   EXPECT_NE(ParameterTable::CheckConsistency(scene).find("friction"), std::string::npos);
-  scene.sim.friction = 0.5;
+  scene.sim.forces.friction = 0.5;
   EXPECT_EQ(ParameterTable::CheckConsistency(scene), "");
 }
 

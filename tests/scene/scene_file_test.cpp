@@ -27,7 +27,7 @@ TEST(SceneFile, BreezeIsTheBuiltInDefault) {
   EXPECT_EQ(breeze.sim.cols, defaults.sim.cols);
   EXPECT_EQ(breeze.sim.rows, defaults.sim.rows);
   EXPECT_EQ(breeze.sim.width, defaults.sim.width);
-  EXPECT_EQ(breeze.sim.stiffness, defaults.sim.stiffness);
+  EXPECT_EQ(breeze.sim.forces.stiffness, defaults.sim.forces.stiffness);
   EXPECT_EQ(breeze.wind.velocity, defaults.wind.velocity);
   EXPECT_EQ(breeze.wind.gust, defaults.wind.gust);
   EXPECT_EQ(breeze.description, defaults.description);
@@ -50,7 +50,7 @@ ramp_time = 2
                                  "test.toml");
   EXPECT_EQ(scene.name, "test");
   EXPECT_EQ(scene.seed, 9u);
-  EXPECT_EQ(scene.sim.stiffness, 3000);
+  EXPECT_EQ(scene.sim.forces.stiffness, 3000);
   EXPECT_EQ(scene.sim.cols, 16);
   EXPECT_TRUE(scene.sim.relative_wind);
   EXPECT_EQ(scene.sim.integrator, sim::IntegratorKind::kSeed);

@@ -66,7 +66,7 @@ TEST(SceneTimeline, EveryAnimatableParameterReachesTheSimulation) {
     ApplyControls(controls, &scene);
     EXPECT_EQ(parameter.get(scene), value) << parameter.name;
     sim::Simulation<float> simulation(Scene{}.sim, Scene{}.wind);
-    simulation.SetControls(scene.sim, scene.wind);
+    simulation.SetControls(scene.sim.forces, scene.wind);
     Scene seen;
     seen.sim = simulation.params();
     EXPECT_EQ(parameter.get(seen), value) << parameter.name;
@@ -162,8 +162,8 @@ TEST(SceneTimeline, ControlsReachTheSceneWithinTheirLimits) {
   EXPECT_EQ(scene.wind.velocity, (sim::Vec3{0, 0, -ParameterTable::kMaxWindSpeed}));
   EXPECT_EQ(scene.wind.gust, ParameterTable::kMaxGust);
   EXPECT_EQ(scene.wind.ramp_time, 0);
-  EXPECT_EQ(scene.sim.stiffness, ParameterTable::Get().Find("stiffness")->min_value);
-  EXPECT_EQ(scene.sim.gravity, 3);
+  EXPECT_EQ(scene.sim.forces.stiffness, ParameterTable::Get().Find("stiffness")->min_value);
+  EXPECT_EQ(scene.sim.forces.gravity, 3);
   EXPECT_EQ(scene.camera.eye, before.eye);  // kept: a view from the target sees nothing
   EXPECT_DOUBLE_EQ(scene.camera.fov_y, TimelineLimits::kMaxFov * M_PI / 180);
 
@@ -175,7 +175,7 @@ TEST(SceneTimeline, ControlsReachTheSceneWithinTheirLimits) {
 
 TEST(SceneTimeline, ControlsInForceAreTheScenes) {
   Scene scene;
-  scene.sim.stiffness = 1234;
+  scene.sim.forces.stiffness = 1234;
   sim::Timeline timeline;
   sim::Keyframe key = Key(0, {{"stiffness", 3000}});
   key.camera = sim::CameraControl{{1, 2, 3}, {0, 2, 0}, 30};
@@ -195,11 +195,11 @@ TEST(SceneTimeline, SettingsAroundHoldTheSegmentsExtremesWithinTheTable) {
   timeline.Add(Key(0, {{"stiffness", 1000}, {"damping", 0.2}}));
   timeline.Add(Key(2, {{"stiffness", 3000}, {"damping", 0.1}}));
   const SettingRange around = SettingsAround(scene, timeline, 1);
-  EXPECT_EQ(around.least.stiffness, 1000);
-  EXPECT_EQ(around.most.stiffness, 3000);
-  EXPECT_EQ(around.least.damping, 0.1);
-  EXPECT_EQ(around.most.damping, 0.2);
-  EXPECT_EQ(around.least.friction, scene.sim.friction);  // not animated: as the scene has it
+  EXPECT_EQ(around.least.forces.stiffness, 1000);
+  EXPECT_EQ(around.most.forces.stiffness, 3000);
+  EXPECT_EQ(around.least.forces.damping, 0.1);
+  EXPECT_EQ(around.most.forces.damping, 0.2);
+  EXPECT_EQ(around.least.forces.friction, scene.sim.forces.friction);  // not animated: as the scene has it
 
   // A cubic that dips below the table's least stiffness is held to it.
   sim::Timeline dipping;
@@ -208,7 +208,7 @@ TEST(SceneTimeline, SettingsAroundHoldTheSegmentsExtremesWithinTheTable) {
     each.law = sim::ControlLaw::kCubic;
     dipping.Add(each);
   }
-  EXPECT_EQ(SettingsAround(scene, dipping, 1).least.stiffness, 1);
+  EXPECT_EQ(SettingsAround(scene, dipping, 1).least.forces.stiffness, 1);
 }
 
 TEST(SceneTimeline, OnlySpringsDampingAndFrictionMoveTheSubsteps) {

@@ -82,7 +82,7 @@ TEST(CheckpointCodec, AResumedSessionStepsAndDrawsAsTheOriginal) {
   EXPECT_EQ(resumed.simulation().Hash(), original.simulation().Hash());
   EXPECT_EQ(resumed.simulation().state().step, original.simulation().state().step);
   EXPECT_EQ(resumed.scene().timeline, original.scene().timeline);
-  EXPECT_EQ(resumed.scene().sim.stiffness, original.scene().sim.stiffness);
+  EXPECT_EQ(resumed.scene().sim.forces.stiffness, original.scene().sim.forces.stiffness);
   EXPECT_EQ(resumed.RenderFrame(1).rgb, original.RenderFrame(1).rgb);
   // The initial scene came too: a reset goes back to the same place in both.
   EXPECT_EQ(original.ApplyParams({true, {}}), "");

@@ -82,8 +82,8 @@ TEST_F(CommandIntakeTest, ParamsApplyTogetherOrNotAtAll) {
 
   outcome = SetParams({"stiffness", "damping"}, {"1500", "0.2"});
   EXPECT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
-  EXPECT_EQ(scene().sim.stiffness, 1500);
-  EXPECT_EQ(server_.session().simulation().params().damping, 0.2);
+  EXPECT_EQ(scene().sim.forces.stiffness, 1500);
+  EXPECT_EQ(server_.session().simulation().params().forces.damping, 0.2);
 }
 
 TEST_F(CommandIntakeTest, EveryParameterRejectsNanInfinityAndOutOfRange) {
@@ -109,7 +109,7 @@ TEST_F(CommandIntakeTest, ResetRestoresTheScene) {
   param_command_t reset{};
   reset.reset_to_scene = true;
   EXPECT_EQ(client_.Send(channels_.param, reset).result, CommandOutcome::kAccepted);
-  EXPECT_EQ(scene().sim.stiffness, Scene{}.sim.stiffness);
+  EXPECT_EQ(scene().sim.forces.stiffness, Scene{}.sim.forces.stiffness);
   EXPECT_EQ(server_.session().simulation().model().cols, Scene{}.sim.cols);
   EXPECT_EQ(scene().wind.velocity, Scene{}.wind.velocity);
 }
@@ -317,7 +317,7 @@ TEST_F(CommandIntakeTest, KeyframesAreAddedPlayedAndListedOnTimeline) {
   // step started dt before the position.
   const double position = scene().timeline.position();
   ASSERT_LT(position, 2);
-  EXPECT_NEAR(scene().sim.stiffness, 1000 + 250 * (position - scene().sim.dt), 1e-6);
+  EXPECT_NEAR(scene().sim.forces.stiffness, 1000 + 250 * (position - scene().sim.dt), 1e-6);
   EXPECT_EQ(stats().commands_accepted, 3);
 }
 

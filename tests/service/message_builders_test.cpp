@@ -105,7 +105,7 @@ TEST(MessageBuilders, FramesCarryTheCameraAsDrawn) {
 
 TEST(MessageBuilders, ParamsListTheWholeTableWithCurrentValues) {
   Scene scene;
-  scene.sim.stiffness = 777;
+  scene.sim.forces.stiffness = 777;
   const params_t params = MakeParamsMessage(scene, 1);
   ASSERT_EQ(params.num_params, static_cast<int32_t>(ParameterTable::Get().parameters().size()));
   bool found = false;
@@ -115,7 +115,7 @@ TEST(MessageBuilders, ParamsListTheWholeTableWithCurrentValues) {
     EXPECT_EQ(row.value, 777);
     EXPECT_EQ(row.value_text, "777");
     EXPECT_EQ(row.unit, "N/m");
-    EXPECT_EQ(row.default_value, Scene{}.sim.stiffness);
+    EXPECT_EQ(row.default_value, Scene{}.sim.forces.stiffness);
   }
   EXPECT_TRUE(found);
   const auto bytes = testing::Encode(params);

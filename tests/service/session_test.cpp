@@ -60,13 +60,13 @@ TEST(Session, ASettlingSceneStartsFromItsDrapeWithTheClockAtZero) {
 
 TEST(Session, APlayingTimelineDrivesTheControlsInSimulatedTime) {
   Session session(Stiffening());
-  EXPECT_EQ(session.scene().sim.stiffness, 1000);  // the timeline's start, from the first step
-  EXPECT_EQ(session.simulation().params().stiffness, 1000);
+  EXPECT_EQ(session.scene().sim.forces.stiffness, 1000);  // the timeline's start, from the first step
+  EXPECT_EQ(session.simulation().params().forces.stiffness, 1000);
   const double dt = session.scene().sim.dt;
   for (int i = 0; i < 250; ++i) session.Step();
   // Step 249 started at 249 dt: 1000 + 500/s there.
-  EXPECT_NEAR(session.scene().sim.stiffness, 1000 + 500 * 249 * dt, 1e-9);
-  EXPECT_EQ(session.simulation().params().stiffness, session.scene().sim.stiffness);
+  EXPECT_NEAR(session.scene().sim.forces.stiffness, 1000 + 500 * 249 * dt, 1e-9);
+  EXPECT_EQ(session.simulation().params().forces.stiffness, session.scene().sim.forces.stiffness);
   EXPECT_NEAR(session.scene().timeline.position(), 250 * dt, 1e-12);
   EXPECT_EQ(session.scene().sim.cols, Scene{}.sim.cols);  // nothing else moved
 }
@@ -89,7 +89,7 @@ TEST(Session, ThePausedTimelineLeavesTheControlsToCommands) {
   ASSERT_EQ(session.ApplyParams(change), "");
   const double position = session.scene().timeline.position();
   for (int i = 0; i < 10; ++i) session.Step();
-  EXPECT_EQ(session.scene().sim.stiffness, 2500);
+  EXPECT_EQ(session.scene().sim.forces.stiffness, 2500);
   EXPECT_EQ(session.scene().timeline.position(), position);
 }
 
@@ -104,7 +104,7 @@ TEST(Session, SubstepsAreFixedPerSegmentForItsStiffestSetting) {
   scene.timeline.Play();
   Session session(scene);
   sim::SimParams stiff = scene.sim;
-  stiff.stiffness = 20000;
+  stiff.forces.stiffness = 20000;
   int first = 0;
   for (int i = 0; i < 500; ++i) {  // 0 to 1 s: both segments reach 20000 N/m
     session.Step();
@@ -114,7 +114,7 @@ TEST(Session, SubstepsAreFixedPerSegmentForItsStiffestSetting) {
   }
   for (int i = 0; i < 10; ++i) session.Step();  // from the last key on, 2000 N/m holds
   EXPECT_FALSE(session.scene().timeline.playing());
-  EXPECT_EQ(session.scene().sim.stiffness, 2000);
+  EXPECT_EQ(session.scene().sim.forces.stiffness, 2000);
   EXPECT_EQ(session.simulation().substeps(), sim::SubstepsFor(scene.sim));
   EXPECT_LT(session.simulation().substeps(), first);
   EXPECT_EQ(session.simulation().recoveries(), 0);
@@ -130,11 +130,11 @@ TEST(Session, KeysEditedDuringPlayMakeNoJump) {
   edit.operation = TimelineEdit::kAdd;
   edit.key = Key(4, {{"stiffness", 7000}});  // replaces the key at 4 s: the curve at 2 s is 4000
   ASSERT_EQ(session.ApplyTimeline(edit), "");
-  double largest = 0, last = session.scene().sim.stiffness;
+  double largest = 0, last = session.scene().sim.forces.stiffness;
   for (int i = 0; i < 500; ++i) {
     session.Step();
-    largest = std::max(largest, std::abs(session.scene().sim.stiffness - last));
-    last = session.scene().sim.stiffness;
+    largest = std::max(largest, std::abs(session.scene().sim.forces.stiffness - last));
+    last = session.scene().sim.forces.stiffness;
   }
   EXPECT_LT(largest, (1500 + 2000 * 1.5 / sim::Timeline::kGlideTime) * dt * 1.01);
   EXPECT_NEAR(last, 1000 + 1500 * (session.scene().timeline.position() - dt), 1e-6);  // on the new curve
@@ -144,8 +144,8 @@ TEST(Session, KeysEditedDuringPlayMakeNoJump) {
   largest = 0;
   for (int i = 0; i < 500; ++i) {
     session.Step();
-    largest = std::max(largest, std::abs(session.scene().sim.stiffness - last));
-    last = session.scene().sim.stiffness;
+    largest = std::max(largest, std::abs(session.scene().sim.forces.stiffness - last));
+    last = session.scene().sim.forces.stiffness;
   }
   EXPECT_LT(largest, 1.5 * (5500 - 1000) / sim::Timeline::kGlideTime * dt * 1.01);  // from 5497 or so
   EXPECT_EQ(last, 1000);
@@ -156,14 +156,14 @@ TEST(Session, PlayGlidesFromTheValuesInForce) {
   scene.timeline.Add(Key(0, {{"stiffness", 5000}}));
   Session session(scene);
   for (int i = 0; i < 10; ++i) session.Step();
-  EXPECT_EQ(session.scene().sim.stiffness, scene.sim.stiffness);  // not playing: the scene's
+  EXPECT_EQ(session.scene().sim.forces.stiffness, scene.sim.forces.stiffness);  // not playing: the scene's
   ASSERT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kPlay)), "");
   session.Step();
-  EXPECT_EQ(session.scene().sim.stiffness, scene.sim.stiffness);  // where it was, then on
+  EXPECT_EQ(session.scene().sim.forces.stiffness, scene.sim.forces.stiffness);  // where it was, then on
   session.Step();
-  EXPECT_GT(session.scene().sim.stiffness, scene.sim.stiffness);
+  EXPECT_GT(session.scene().sim.forces.stiffness, scene.sim.forces.stiffness);
   for (int i = 0; i < 200; ++i) session.Step();
-  EXPECT_EQ(session.scene().sim.stiffness, 5000);
+  EXPECT_EQ(session.scene().sim.forces.stiffness, 5000);
 }
 
 TEST(Session, ChangeMergesIntoTheKeyAndCanMoveIt) {

@@ -44,9 +44,9 @@ TEST(ClothModel, SpringConstantsFollowTheSheetModulus) {
   params.height = 1.0;
   const ClothModel<double> model = BuildClothModel<double>(params);
   for (const SpringFamily<double>& family : model.families) {
-    const double expected = family.kind == SpringKind::kStructural ? params.stiffness
-                            : family.kind == SpringKind::kShear    ? params.shear_stiffness / 2
-                                                                   : params.bend_stiffness / 4;
+    const double expected = family.kind == SpringKind::kStructural ? params.forces.stiffness
+                            : family.kind == SpringKind::kShear    ? params.forces.shear_stiffness / 2
+                                                                   : params.forces.bend_stiffness / 4;
     EXPECT_NEAR(family.stiffness, expected, 1e-9 * expected);
   }
 }
@@ -89,8 +89,8 @@ TEST(ClothModel, FrequencyBoundHoldsForTheLowestOrderCase) {
   SimParams params;
   params.cols = 2;
   params.rows = 2;
-  params.shear_stiffness = 0;
-  params.bend_stiffness = 0;
+  params.forces.shear_stiffness = 0;
+  params.forces.bend_stiffness = 0;
   const ClothModel<double> model = BuildClothModel<double>(params);
   const FrequencyBound bound = EstimateFrequencyBound(model, 0.0);
   const double k_h = model.families[0].stiffness, k_v = model.families[1].stiffness;
@@ -106,7 +106,7 @@ TEST(ClothModel, FrequencyBoundIsAnUpperBoundAndTight) {
       SimParams params;
       params.cols = cols;
       params.rows = std::max(2, cols * 3 / 4);
-      params.shear_stiffness = shear * params.stiffness;
+      params.forces.shear_stiffness = shear * params.forces.stiffness;
       const double omega_squared = lab::TopEigenvalue(params, false);
       const double damping_rate = lab::TopEigenvalue(params, true);
       const FrequencyBound bound = EstimateFrequencyBound(BuildClothModel<double>(params), 0.0);

@@ -16,8 +16,8 @@ struct System {
     SimParams params = testing::Isolated();
     params.cols = 24;
     params.rows = 16;
-    params.gravity = 9.81;
-    params.stiffness = 20000;
+    params.forces.gravity = 9.81;
+    params.forces.stiffness = 20000;
     model = BuildClothModel<double>(params);
     ClothState<double> state = RestState(model);
     std::mt19937 random(11);
@@ -31,7 +31,7 @@ struct System {
     ForceEvaluator<double> evaluator;
     NodeForces<double> forces;
     evaluator.Evaluate(model, params, WindField(testing::NoWind()), state, 0, &forces);
-    jacobian.Assemble(model, state, forces, 0.01, params.friction, 1, &b);
+    jacobian.Assemble(model, state, forces, 0.01, params.forces.friction, 1, &b);
   }
 
   /// |b - A x| / |b|, computed afresh.

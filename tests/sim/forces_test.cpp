@@ -95,8 +95,8 @@ TEST(Forces, SpringDampingOpposesTheClosingSpeedOnly) {
 
 TEST(Forces, GravityAndFrictionPerNode) {
   SimParams params = Isolated();
-  params.gravity = 9.81;
-  params.friction = 0.5;
+  params.forces.gravity = 9.81;
+  params.forces.friction = 0.5;
   const ClothModel<double> model = OneSpring(0, 0, 1.0);
   ClothState<double> state = RestState(model);
   state.vz[1] = 4.0;
@@ -111,8 +111,8 @@ TEST(Forces, WindOnAFlatFlagIsCTimesAreaTimesNormalWind) {
   // Flat flag in the x-y plane (normal +z); wind w: total force C A n (n . w) = C A w_z z^.
   SimParams params = Isolated();
   params.imperfection = 0;  // exactly flat
-  params.wind_coefficient = 1.7;
-  params.stiffness = 1;  // at rest: no spring force anyway
+  params.forces.wind_coefficient = 1.7;
+  params.forces.stiffness = 1;  // at rest: no spring force anyway
   const ClothModel<double> model = BuildClothModel<double>(params);
   const ClothState<double> state = RestState(model);
   const WindField wind(WindSettings{{3.0, -1.0, 2.0}, 0, 0});
@@ -137,7 +137,7 @@ TEST(Forces, WindOnAFlatFlagIsCTimesAreaTimesNormalWind) {
 TEST(Forces, RelativeWindSubtractsTheClothVelocity) {
   SimParams params = Isolated();
   params.imperfection = 0;  // flat, so that every node carries the same share of face velocity
-  params.wind_coefficient = 1.0;
+  params.forces.wind_coefficient = 1.0;
   params.relative_wind = true;
   const ClothModel<double> model = BuildClothModel<double>(params);
   ClothState<double> state = RestState(model);
@@ -165,7 +165,7 @@ TEST(Forces, TermsLeftOutAreAsIfTheFlagLackedThem) {
   ClothModel<float> springless = model;
   springless.families.clear();
   SimParams frictionless = params;
-  frictionless.friction = 0;
+  frictionless.forces.friction = 0;
   const struct {
     ForceTerms terms;
     const SimParams& lacking_params;

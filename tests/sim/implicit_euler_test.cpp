@@ -24,7 +24,7 @@ SimParams StiffFlagAtSixtyHertz(IntegratorKind integrator) {
   SimParams params;
   params.cols = 64;
   params.rows = 48;
-  params.stiffness = 1e5;
+  params.forces.stiffness = 1e5;
   params.dt = 1.0 / 60;
   params.integrator = integrator;
   return params;
@@ -49,7 +49,7 @@ TEST(ImplicitEuler, OneSpringStepIsTheClosedFormBackwardEulerStep) {
   model.rest_y = {0, 0};
   model.rest_z = {0, 0};
   SimParams params = testing::Isolated();
-  params.friction = mu;
+  params.forces.friction = mu;
   params.solver_tolerance = 1e-12;
   const WindField wind(NoWind());
   ForceEvaluator<double> evaluator;
@@ -85,11 +85,11 @@ TEST(ImplicitEuler, StiffFlagAtLargeStepsLosesEnergyWhereSymplecticEulerBlowsUp)
     const StepContext<double> context{model, params, wind, evaluator};
     const auto implicit = MakeIntegrator<double>(IntegratorKind::kImplicitEuler);
     ClothState<double> state = RestState(model);
-    const double start = Energy(model, state, params.gravity);
+    const double start = Energy(model, state, params.forces.gravity);
     double energy = start;
     for (int step = 0; step < 60; ++step) {  // 1 s: the flag sags and swings back
       implicit->Substep(context, params.dt, &state);
-      const double now = Energy(model, state, params.gravity);
+      const double now = Energy(model, state, params.forces.gravity);
       ASSERT_TRUE(std::isfinite(now));
       if (imperfection == 0) {
         ASSERT_LE(now, energy + 1e-9) << "step " << step;

@@ -22,10 +22,10 @@ lab::Trial SoftFlag(IntegratorKind kind) {
   lab::Trial trial;
   trial.params.cols = 6;
   trial.params.rows = 5;
-  trial.params.stiffness = 200;
-  trial.params.shear_stiffness = 20;
-  trial.params.bend_stiffness = 2;
-  trial.params.damping = 0.5;
+  trial.params.forces.stiffness = 200;
+  trial.params.forces.shear_stiffness = 20;
+  trial.params.forces.bend_stiffness = 2;
+  trial.params.forces.damping = 0.5;
   trial.params.integrator = kind;
   trial.wind = WindSettings{{3.0, 0.0, 2.0}, 0.0, 0.0};
   trial.horizon = 0.1;
@@ -82,7 +82,7 @@ class EveryIntegrator : public ::testing::TestWithParam<IntegratorKind> {};
 // four times it is not (for the explicit methods: the bound is not wildly conservative).
 TEST_P(EveryIntegrator, ClaimedStableStepIsStable) {
   lab::Trial trial = SoftFlag(GetParam());
-  trial.params.damping = 0.05;  // lightly damped: the hard case
+  trial.params.forces.damping = 0.05;  // lightly damped: the hard case
   trial.params.cols = 12;
   trial.params.rows = 8;
   trial.horizon = 2.0;
@@ -150,7 +150,7 @@ TEST_P(EveryIntegrator, ASpringRestsWhereItsRegimesStiffnessCarriesTheWeight) {
     model.rest_y = {1, 0};
     model.rest_z = {0, 0};
     SimParams params = testing::Isolated();
-    params.gravity = gravity;
+    params.forces.gravity = gravity;
     params.integrator = GetParam();
     const WindField wind(testing::NoWind());
     ForceEvaluator<double> evaluator;
@@ -175,7 +175,7 @@ Buckling CompressedSheet(IntegratorKind kind, double imperfection) {
   SimParams params = testing::Isolated();
   params.cols = 12;
   params.rows = 8;
-  params.friction = kind == IntegratorKind::kSeed ? 0 : 1;  // the seed's friction is a fraction of F
+  params.forces.friction = kind == IntegratorKind::kSeed ? 0 : 1;  // the seed's friction is a fraction of F
   params.imperfection = imperfection;
   params.integrator = kind;
   ClothModel<double> model = BuildClothModel<double>(params);

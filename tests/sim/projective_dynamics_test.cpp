@@ -30,7 +30,7 @@ TEST(ProjectiveDynamics, HangingFlagComesToRestInForceBalance) {
   params.cols = 16;
   params.rows = 12;
   params.dt = 1.0 / 60;
-  params.friction = 2;
+  params.forces.friction = 2;
   params.compression = 1;
   params.imperfection = 0;
   Simulation<double> simulation(params, NoWind());
@@ -49,7 +49,7 @@ TEST(ProjectiveDynamics, HangingFlagComesToRestInForceBalance) {
     if (model.pinned(i)) continue;
     const double net =
         std::sqrt(forces.x[i] * forces.x[i] + forces.y[i] * forces.y[i] + forces.z[i] * forces.z[i]);
-    worst = std::max(worst, net / (model.mass[i] * params.gravity));
+    worst = std::max(worst, net / (model.mass[i] * params.forces.gravity));
   }
   EXPECT_LT(worst, 1e-6);
 }
@@ -58,8 +58,8 @@ TEST(ProjectiveDynamics, FreeFlagFallsWithImplicitFriction) {
   // Springs at rest length stay there, so every node steps v' = (v - g h) / (1 + h mu).
   SimParams params = Projective();
   params.imperfection = 0;  // flat: every spring at its rest length
-  params.friction = 0.5;
-  params.wind_coefficient = 0;
+  params.forces.friction = 0.5;
+  params.forces.wind_coefficient = 0;
   ClothModel<double> model = BuildClothModel<double>(params);
   testing::Unpin(&model);
   const WindField wind(NoWind());
@@ -70,7 +70,7 @@ TEST(ProjectiveDynamics, FreeFlagFallsWithImplicitFriction) {
   double v = 0, y = state.y[7];
   for (int step = 0; step < 50; ++step) {
     integrator->Substep({model, params, wind, evaluator}, h, &state);
-    v = (v - params.gravity * h) / (1 + h * params.friction);
+    v = (v - params.forces.gravity * h) / (1 + h * params.forces.friction);
     y += h * v;
   }
   EXPECT_NEAR(state.vy[7], v, 1e-9);
@@ -82,14 +82,14 @@ TEST(ProjectiveDynamics, StiffFlagAtLargeStepsNeverExceedsItsInitialEnergy) {
   SimParams params = Projective();
   params.cols = 64;
   params.rows = 48;
-  params.stiffness = 1e5;
+  params.forces.stiffness = 1e5;
   params.dt = 1.0 / 60;
   Simulation<double> simulation(params, NoWind());
   const auto energy = [&] {
     const auto& model = simulation.model();
     const auto& state = simulation.state();
     double height = 0;
-    for (int i = 0; i < model.num_nodes(); ++i) height += model.mass[i] * params.gravity * state.y[i];
+    for (int i = 0; i < model.num_nodes(); ++i) height += model.mass[i] * params.forces.gravity * state.y[i];
     return testing::KineticEnergy(model, state) + testing::SpringEnergy(model, state) + height;
   };
   // Truncated iterations let the sag breathe slowly, so energy is not monotone; it must stay
@@ -136,10 +136,10 @@ TEST(ProjectiveDynamics, RefactorisesWhenTheStepOrTheSpringsChange) {
   expect_fresh(0.004, "first step");
   expect_fresh(0.004, "same step");
   expect_fresh(0.002, "new step");
-  params.stiffness *= 3;
+  params.forces.stiffness *= 3;
   SetSpringConstants(params, &model);
   expect_fresh(0.002, "new stiffness");
-  params.friction = 1;
+  params.forces.friction = 1;
   expect_fresh(0.002, "new friction");
 }
 

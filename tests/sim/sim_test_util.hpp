@@ -14,9 +14,9 @@ namespace flagsim::sim::testing {
 /// Parameters with every external force off: no gravity, wind, friction.
 inline SimParams Isolated() {
   SimParams params;
-  params.gravity = 0;
-  params.friction = 0;
-  params.wind_coefficient = 0;
+  params.forces.gravity = 0;
+  params.forces.friction = 0;
+  params.forces.wind_coefficient = 0;
   return params;
 }
 

@@ -20,9 +20,9 @@ struct StretchedFlag {
     params = testing::Isolated();
     params.cols = 5;
     params.rows = 4;
-    params.gravity = 9.81;
-    params.friction = 0.3;
-    params.damping = 0.4;
+    params.forces.gravity = 9.81;
+    params.forces.friction = 0.3;
+    params.forces.damping = 0.4;
     model = BuildClothModel<double>(params);
     state = RestState(model);
     std::mt19937 random(3);
@@ -94,7 +94,7 @@ TEST(SpringJacobian, MatrixAndRightHandSideMatchFiniteDifferences) {
   flag.evaluator.Evaluate(flag.model, flag.params, WindField(NoWind()), flag.state, 0, &forces);
   SpringJacobian<double> jacobian;
   NodeVectors<double> rhs;
-  jacobian.Assemble(flag.model, flag.state, forces, h, flag.params.friction, 1, &rhs);
+  jacobian.Assemble(flag.model, flag.state, forces, h, flag.params.forces.friction, 1, &rhs);
 
   const int n = 3 * flag.model.num_nodes();
   const Dense dfdx = flag.Derivative(false), dfdv = flag.Derivative(true);

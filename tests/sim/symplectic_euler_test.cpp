@@ -36,7 +36,7 @@ TEST(SymplecticEuler, FreeFallOfAnUnpinnedFlagFollowsGravity) {
   // Internal forces cancel, so the centre of mass falls as one body. Symplectic Euler's exact
   // discrete solution: v_n = -g n h, y_n = y_0 - g h^2 n (n + 1) / 2 = y_0 - g t (t + h) / 2.
   SimParams params = Isolated();
-  params.gravity = 9.81;
+  params.forces.gravity = 9.81;
   ClothModel<double> model = BuildClothModel<double>(params);
   testing::Unpin(&model);
   Rig rig(params, model);
@@ -139,8 +139,8 @@ TEST(SymplecticEuler, StableStepIsTwoOverOmegaWithoutDamping) {
 TEST(SeedScheme, FrictionScalesTheForce) {
   // The seed's F_fric = -mu F: a free node under gravity alone falls at (1 - mu) g.
   SimParams params = Isolated();
-  params.gravity = 10;
-  params.friction = 0.25;
+  params.forces.gravity = 10;
+  params.forces.friction = 0.25;
   params.integrator = IntegratorKind::kSeed;
   params.imperfection = 0;  // flat: every spring at its rest length, no spring force
   ClothModel<double> model = BuildClothModel<double>(params);

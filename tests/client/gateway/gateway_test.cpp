@@ -166,7 +166,7 @@ TEST_F(GatewayTest, TheServersStreamsArriveAsJson) {
     if (row["name"] == "stiffness") {
       found = true;
       EXPECT_EQ(row["kind"], "real");
-      EXPECT_EQ(row["value"].get<double>(), server_.session().scene().sim.stiffness);
+      EXPECT_EQ(row["value"].get<double>(), server_.session().scene().sim.forces.stiffness);
     }
   }
   EXPECT_TRUE(found);
@@ -244,7 +244,7 @@ TEST_F(GatewayTest, SetParametersAnswersWithTheValuesInForceAndRejectionsWithThe
   ASSERT_TRUE(RunUntil([&] { return !client_.Texts("parameterValues", "a").empty(); }));
   EXPECT_EQ(client_.Texts("parameterValues", "a")[0]["parameters"][0],
             json({{"name", "stiffness"}, {"value", 1500.0}}));
-  EXPECT_EQ(server_.session().scene().sim.stiffness, 1500);
+  EXPECT_EQ(server_.session().scene().sim.forces.stiffness, 1500);
 
   client_.Send(
       {{"op", "setParameters"}, {"id", "b"}, {"parameters", {{{"name", "stiffness"}, {"value", -5}}}}});
@@ -254,7 +254,7 @@ TEST_F(GatewayTest, SetParametersAnswersWithTheValuesInForceAndRejectionsWithThe
   EXPECT_EQ(statuses[0]["level"], ClientProtocol::kError);
   EXPECT_EQ(statuses[0]["message"].get<std::string>().rfind("stiffness:", 0), 0u) << statuses[0];
   EXPECT_EQ(client_.Texts("parameterValues", "b")[0]["parameters"][0]["value"], 1500.0) << "unchanged";
-  EXPECT_EQ(server_.session().scene().sim.stiffness, 1500);
+  EXPECT_EQ(server_.session().scene().sim.forces.stiffness, 1500);
 }
 
 TEST_F(GatewayTest, ParameterUpdatesGoToClientsThatFollowThem) {
