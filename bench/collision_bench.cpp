@@ -20,9 +20,9 @@
 // The machine is shared: ratios measured in one run are what to compare, not times across runs.
 //
 // Columns of the table and the CSV: preset, cols, rows, substeps (per step), seconds (simulated),
-// ms_off, ms_on, ratio, run_ms_off, run_ms_on, run_ratio, candidates, contacts, held (means per
-// step with self-collision on: primitive pairs whose swept boxes overlap, impulses, nodes the
-// fail-safe kept still), crossings_per_s_off, crossings_per_s_on.
+// ms_off, ms_on, ratio, run_ms_off, run_ms_on, run_ratio, patch_pairs, candidates, contacts, held
+// (means per step with self-collision on: pairs of patches examined, primitive pairs whose swept
+// boxes overlap, impulses, nodes the fail-safe kept still), crossings_per_s_off, crossings_per_s_on.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -64,7 +64,7 @@ struct Run {
   double cpu_seconds = 0;  ///< of stepping alone
   int64_t steps = 0;
   int64_t crossings = 0;                          ///< crossing triangle pairs, summed over the sampled states
-  double candidates = 0, contacts = 0, held = 0;  ///< sums over steps of self_collision_stats()
+  double patch_pairs = 0, candidates = 0, contacts = 0, held = 0;  ///< sums over steps of self_collision_stats()
 };
 
 Run StartRun(const Scene& scene, const sim::SimParams& params, bool self_collision) {
@@ -80,6 +80,7 @@ void StepTimed(int steps, Run* run) {
     run->simulation->Step();
     run->cpu_seconds += lab::ThreadCpuSeconds() - start;
     const sim::SelfCollisionStats& stats = run->simulation->self_collision_stats();
+    run->patch_pairs += stats.patch_pairs;
     run->candidates += stats.candidates;
     run->contacts += stats.contacts;
     run->held += stats.held;
@@ -160,7 +161,7 @@ void Measure(const Case& one, const Options& options, Table* table) {
               std::to_string(on.simulation->substeps()), Table::Number(simulated),
               Table::Number(1e3 * timing.off), Table::Number(1e3 * timing.on), Table::Number(timing.ratio),
               Table::Number(1e3 * run_off), Table::Number(1e3 * run_on), Table::Number(run_on / run_off),
-              Table::Number(on.candidates / steps), Table::Number(on.contacts / steps),
+              Table::Number(on.patch_pairs / steps), Table::Number(on.candidates / steps), Table::Number(on.contacts / steps),
               Table::Number(on.held / steps), Table::Number(double(off.crossings) / simulated),
               Table::Number(double(on.crossings) / simulated)});
 }
@@ -180,7 +181,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   flagsim::lab::Table table(
       {"preset", "cols", "rows", "substeps", "seconds", "ms_off", "ms_on", "ratio", "run_ms_off", "run_ms_on",
-       "run_ratio", "candidates", "contacts", "held", "crossings_per_s_off", "crossings_per_s_on"},
+       "run_ratio", "patch_pairs", "candidates", "contacts", "held", "crossings_per_s_off", "crossings_per_s_on"},
       options.csv);
   const std::vector<flagsim::bench::Case> cases = {{"breeze", 1}, {"breeze", 2}, {"breeze", 4},
                                                    {"breeze", 8}, {"calm", 1},   {"gale", 1}};

@@ -44,7 +44,7 @@ only(name, column) = strcol(1) eq name ? column(column) : NaN
 
 stats csv skip 1 using 9 name "off_ms" nooutput
 stats csv skip 1 using 10 name "on_ms" nooutput
-stats csv skip 1 using (at_floor(column(15))) name "off_rate" nooutput
+stats csv skip 1 using (at_floor(column(16))) name "off_rate" nooutput
 least_ms = off_ms_min < on_ms_min ? off_ms_min : on_ms_min
 most_ms = off_ms_max > on_ms_max ? off_ms_max : on_ms_max
 set xrange [least_ms / 2:most_ms * 3]
@@ -52,16 +52,16 @@ set yrange [floor / 8:(off_rate_max > 1 ? off_rate_max : 1) * 5]
 set arrow 1 from graph 0, first floor to graph 1, first floor nohead dashtype 2 linecolor rgb "#555555"
 set label 1 "none" at graph 0.01, first floor offset 0,0.6 textcolor rgb "#555555"
 
-# Each case's two points joined: off (column 9, 15) then on (10, 16), a blank line between cases.
-pairs = "< awk -F, 'NR > 1 { print $9 \",\" $15; print $10 \",\" $16; print \"\" }' " . csv
+# Each case's two points joined: off (column 9, 16) then on (10, 17), a blank line between cases.
+pairs = "< awk -F, 'NR > 1 { print $9 \",\" $16; print $10 \",\" $17; print \"\" }' " . csv
 
 plot pairs using 1:(at_floor($2)) with lines linecolor rgb "#bbbbbb" notitle, \
-     csv skip 1 using 9:(at_floor(column(15))) with points pointtype 7 pointsize 1.6 \
+     csv skip 1 using 9:(at_floor(column(16))) with points pointtype 7 pointsize 1.6 \
        linecolor rgb "#d62728" title "self_collision off", \
-     csv skip 1 using 10:(at_floor(column(16))) with points pointtype 5 pointsize 1.6 \
+     csv skip 1 using 10:(at_floor(column(17))) with points pointtype 5 pointsize 1.6 \
        linecolor rgb "#1f77b4" title "self_collision on", \
-     for [i=1:3] csv skip 1 using (only(word(presets, i), 9)):(at_floor(column(15))):(case_name(0)) \
+     for [i=1:3] csv skip 1 using (only(word(presets, i), 9)):(at_floor(column(16))):(case_name(0)) \
        with labels offset char real(word(off_dx, i)),real(word(off_dy, i)) left font ",9" \
        textcolor rgb "#d62728" notitle, \
-     for [i=1:3] csv skip 1 using (only(word(presets, i), 10)):(at_floor(column(16))):(case_name(0)) \
+     for [i=1:3] csv skip 1 using (only(word(presets, i), 10)):(at_floor(column(17))):(case_name(0)) \
        with labels offset char 1,real(word(on_dy, i)) left font ",9" textcolor rgb "#1f77b4" notitle

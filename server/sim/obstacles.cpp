@@ -33,14 +33,17 @@ template <typename Real>
 bool PushOutOfObstacles(const ClothModel<Real>& model, const Obstacles& obstacles, ClothState<Real>* state) {
   const double radius = obstacles.pole_radius + obstacles.margin, ground = obstacles.margin;
   const double radius_squared = radius * radius;
-  // Most substeps touch nothing: one branch-free pass finds whether any node needs moving.
+  // Most substeps touch nothing: one branch-free pass finds whether any free node needs moving
+  // (the pinned hoist edge lies on the pole's surface, within the margin).
   const int n = state->num_nodes();
   const Real *xs = state->x.data(), *ys = state->y.data(), *zs = state->z.data();
+  const Real* inverse_mass = model.inverse_mass.data();
   const Real low = Real(ground), top = Real(obstacles.pole_top), inside = Real(radius_squared);
   int touching = 0;
 #pragma omp simd reduction(| : touching)
   for (int i = 0; i < n; ++i) {
-    touching |= int(ys[i] < low) | (int(ys[i] < top) & int(xs[i] * xs[i] + zs[i] * zs[i] < inside));
+    const int in_pole = int(ys[i] < top) & int(xs[i] * xs[i] + zs[i] * zs[i] < inside);
+    touching |= int(inverse_mass[i] != Real(0)) & (int(ys[i] < low) | in_pole);
   }
   if (touching == 0) return false;
   bool moved = false;

@@ -7,7 +7,10 @@
 namespace flagsim::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+/// Elements 0, 2, 4, ... of the run of 2 count - 1 doubles at `data`.
+Eigen::Map<Eigen::ArrayXd, 0, Eigen::InnerStride<2>> EveryOther(double* data, int count) {
+  return {data, count};
+}
 
 /// The weights k of a pair's closest points (the pair's impulse weights, self_collision.hpp):
 /// point-triangle (p, a, b, c): 1, -w_a, -w_b, -w_c; edge-edge (p0, p1, q0, q1): 1 - s, s,
@@ -19,6 +22,21 @@ std::array<double, 4> ClosestWeights(bool edges, const std::array<Point, 4>& p) 
   }
   const Eigen::Vector3d w = ClosestOnTriangle(p[0], p[1], p[2], p[3]);
   return {1, -w[0], -w[1], -w[2]};
+}
+
+/// Whether the first `split` points and the rest are more than h apart along x, y or z: then
+/// the primitives they span are farther apart than h too (a cheap reject).
+bool ApartAlongAnAxis(int split, const std::array<Point, 4>& p, double h) {
+  Point first_lo = p[0], first_hi = p[0], rest_lo = p[3], rest_hi = p[3];
+  for (int i = 1; i < split; ++i) {
+    first_lo = first_lo.cwiseMin(p[i]);
+    first_hi = first_hi.cwiseMax(p[i]);
+  }
+  for (int i = split; i < 3; ++i) {
+    rest_lo = rest_lo.cwiseMin(p[i]);
+    rest_hi = rest_hi.cwiseMax(p[i]);
+  }
+  return ((rest_lo - first_hi).array() > h).any() || ((first_lo - rest_hi).array() > h).any();
 }
 
 /// sum k_i p_i: from the second primitive's closest point to the first's.
@@ -33,6 +51,8 @@ SelfCollision<Real>::SelfCollision(const ClothModel<Real>& model)
     : cols_(model.cols),
       mesh_(BuildClothMesh(model.cols, model.rows)),
       patches_(BuildClothPatches(mesh_, model.cols, model.rows, kPatchCells)) {
+  triangle_box_.resize(mesh_.triangles.size());
+  edge_box_.resize(mesh_.edges.size());
   leaf_region_.resize(patches_.patches.size());
   for (size_t r = 0; r < patches_.regions.size(); ++r) {
     if (patches_.regions[r].leaf()) leaf_region_[patches_.regions[r].patch] = int(r);
@@ -106,65 +126,90 @@ void SelfCollision<Real>::SweptBoxes() {
   for (int i = 0; i < int(start_.rows()); ++i) {
     node_box_[i] = {Start(i).cwiseMin(End(i)) - grow, Start(i).cwiseMax(End(i)) + grow};
   }
-  triangle_box_.resize(mesh_.triangles.size());
-  for (size_t t = 0; t < mesh_.triangles.size(); ++t) {
+}
+
+// The swept boxes of a patch's triangles and owned edges, their nodes' together: made only for
+// the patches a pair names, as most of the flag is culled before.
+template <typename Real>
+void SelfCollision<Real>::BoxPatch(int p) {
+  if (boxed_[p]) return;
+  boxed_[p] = true;
+  const ClothPatch& patch = patches_.patches[p];
+  for (int t : patch.triangles) {
     const auto [a, b, c] = mesh_.triangles[t];
     triangle_box_[t] = node_box_[a].Joined(node_box_[b]).Joined(node_box_[c]);
   }
-  edge_box_.resize(mesh_.edges.size());
-  for (size_t e = 0; e < mesh_.edges.size(); ++e) {
+  for (int e : patch.owned_edges) {
     const auto [a, b] = mesh_.edges[e];
     edge_box_[e] = node_box_[a].Joined(node_box_[b]);
   }
 }
 
-// Every triangle's normal (unnormalised) at the step's start and end, their lengths, and a
-// bound on how far the normal strays between them: |du x dv| <= |du| |dv|, and an edge's
-// change du = d_b - d_a is at most |d_a| + |d_b| for the nodes' displacements d.
+// Every triangle's normal (unnormalised) at the step's start and end, the longer, and a bound
+// on how far the normal strays between them: |du x dv| <= |du| |dv|, and an edge's change
+// du = d_b - d_a is at most |d_a| + |d_b| for the nodes' displacements d. Row by row of cells,
+// each coordinate of a row a contiguous run: the arithmetic is vectorised.
 template <typename Real>
 void SelfCollision<Real>::TriangleNormals() {
-  const int nodes = int(start_.rows()), cols = cols_, cell_cols = cols_ - 1, rows = nodes / cols_;
+  const int cells = cols_ - 1, rows = int(start_.rows()) / cols_, triangles = 2 * cells * (rows - 1);
   moved_by_ = (end_ - start_).matrix().rowwise().norm();
-  normals_.resize(mesh_.triangles.size());
-  const auto normal = [](const Positions& x, int a, int b, int c) {
-    return Point((x.row(b) - x.row(a)).matrix().cross((x.row(c) - x.row(a)).matrix()));
-  };
-  const auto fill = [&](int t, int a, int b, int c) {
-    TriangleNormal& n = normals_[t];
-    n.start = normal(start_, a, b, c);
-    n.end = normal(end_, a, b, c);
-    n.longest = std::sqrt(std::max(n.start.squaredNorm(), n.end.squaredNorm()));
-    n.curl = (moved_by_[a] + moved_by_[b]) * (moved_by_[a] + moved_by_[c]);
-  };
-  for (int r = 0; r + 1 < rows; ++r) {  // the cells' two triangles, as cloth_mesh.hpp lists them
-    for (int c = 0; c < cell_cols; ++c) {
-      const int t = 2 * (r * cell_cols + c), i = r * cols + c;
-      fill(t, i, i + cols, i + 1);
-      fill(t + 1, i + cols, i + cols + 1, i + 1);
+  normal_start_.resize(triangles, 3);
+  normal_end_.resize(triangles, 3);
+  normal_curl_.resize(triangles);
+  const auto moved = [&](int node) { return moved_by_.array().segment(node, cells); };
+  for (int r = 0; r + 1 < rows; ++r) {
+    const int top = r * cols_, bottom = top + cols_, first = 2 * r * cells;
+    CellNormals(start_, top, bottom, cells, first, &normal_start_);
+    CellNormals(end_, top, bottom, cells, first, &normal_end_);
+    EveryOther(normal_curl_.data() + first, cells) =
+        (moved(top) + moved(bottom)) * (moved(top) + moved(top + 1));
+    EveryOther(normal_curl_.data() + first + 1, cells) =
+        (moved(bottom) + moved(bottom + 1)) * (moved(bottom) + moved(top + 1));
+  }
+  normal_longest_ = normal_start_.square().rowwise().sum().max(normal_end_.square().rowwise().sum()).sqrt();
+}
+
+// The normals (b - a) x (c - a) of a row of cells' two triangles, as cloth_mesh.hpp lists them:
+// (i, i + cols, i + 1) into rows first, first + 2, ... of `normals` and
+// (i + cols, i + cols + 1, i + 1) into first + 1, first + 3, ..., for i from `top` on and
+// i + cols from `bottom` on.
+template <typename Real>
+void SelfCollision<Real>::CellNormals(const Positions& x, int top, int bottom, int cells, int first,
+                                      Positions* normals) {
+  const auto run = [&x, cells](int k, int node) { return x.col(k).segment(node, cells); };
+  for (int upper = 0; upper < 2; ++upper) {
+    const int a = upper ? bottom : top, b = upper ? bottom + 1 : bottom, c = top + 1;
+    const auto u = [&](int k) { return run(k, b) - run(k, a); };
+    const auto v = [&](int k) { return run(k, c) - run(k, a); };
+    for (int k = 0; k < 3; ++k) {
+      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      EveryOther(normals->col(k).data() + first + upper, cells) = u(k1) * v(k2) - u(k2) * v(k1);
     }
   }
 }
 
 // The cone of a leaf patch: about its mean normal over the step, holding every triangle's
 // normal n(t) = (1 - t) n0 + t n1 - t (1 - t) du x dv at every moment t of the step, since
-// n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and |n(t)| <= max(|n0|, |n1|) + curl / 4.
+// n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and |n(t)| <= max(|n0|, |n1|) + curl / 4. The
+// least of n(t) . d / |n(t)| over the triangles is the cone's cosine.
 template <typename Real>
 typename SelfCollision<Real>::Cone SelfCollision<Real>::PatchCone(const ClothPatch& patch) const {
   Point sum = Point::Zero();
-  for (int t : patch.triangles) sum += normals_[t].start + normals_[t].end;
+  for (int t : patch.triangles) sum += Row(normal_start_, t) + Row(normal_end_, t);
   const double length = sum.norm();
-  if (length == 0) return {Point::UnitZ(), kPi};
+  if (length == 0) return {Point::UnitZ()};
   const Point axis = sum / length;
   double least = 1;
   for (int t : patch.triangles) {
-    const TriangleNormal& n = normals_[t];
-    const double along = std::min(n.start.dot(axis), n.end.dot(axis)) - n.curl / 4;
-    least = std::min(least, along <= 0 ? -1.0 : along / (n.longest + n.curl / 4));
+    const double curl = normal_curl_[t] / 4;
+    const double along = std::min(Row(normal_start_, t).dot(axis), Row(normal_end_, t).dot(axis)) - curl;
+    least = std::min(least, along <= 0 ? -1.0 : along / (normal_longest_[t] + curl));
   }
-  return {axis, least > 0 ? std::acos(least) : kPi};
+  if (least <= 0) return {axis};
+  return {axis, least, std::sqrt((1 - least) * (1 + least))};
 }
 
-// Regions' boxes and cones, leaves from their triangles, the rest from their halves.
+// Regions' boxes and cones, leaves from their nodes and triangles, the rest from their halves.
 template <typename Real>
 void SelfCollision<Real>::RegionBounds() {
   const std::vector<PatchRegion>& regions = patches_.regions;
@@ -175,7 +220,7 @@ void SelfCollision<Real>::RegionBounds() {
     if (region.leaf()) {
       const ClothPatch& patch = patches_.patches[region.patch];
       Box box{Point::Constant(INFINITY), Point::Constant(-INFINITY)};
-      for (int t : patch.triangles) box = box.Joined(triangle_box_[t]);
+      for (int node : patch.nodes) box = box.Joined(node_box_[node]);
       region_box_[r] = box;
       region_cone_[r] = PatchCone(patch);
     } else {
@@ -185,19 +230,50 @@ void SelfCollision<Real>::RegionBounds() {
   }
 }
 
-// The smallest cone holding both: its half-angle spans the two cones and the angle between
-// their axes, and its axis turns from the first towards the second to centre it.
+// The smallest cone holding both. With beta the angle between the axes and ta, tb the cones'
+// half-angles (narrow, so under 90 degrees): if beta + tb <= ta, a holds b (and the other way
+// round); else the union's half-angle is s / 2 with s = beta + ta + tb, narrow only when s is
+// under 180 degrees, and its axis turns from a's towards b's by s / 2 - ta. The angles are
+// carried as cosines and sines, summed by cos(x + y) = cx cy - sx sy, sin(x + y) = sx cy + cx sy
+// and halved by cos^2(s / 2) = (1 + cos s) / 2: square roots, no inverse trigonometry.
 template <typename Real>
 typename SelfCollision<Real>::Cone SelfCollision<Real>::Union(const Cone& a, const Cone& b) {
-  if (a.half_angle >= kPi / 2 || b.half_angle >= kPi / 2) return {a.axis, kPi};
-  const double between = std::acos(std::clamp(a.axis.dot(b.axis), -1.0, 1.0));
-  if (between + b.half_angle <= a.half_angle) return a;
-  if (between + a.half_angle <= b.half_angle) return b;
-  const double half = (between + a.half_angle + b.half_angle) / 2;
-  if (half >= kPi / 2) return {a.axis, kPi};
-  const double turn = half - a.half_angle;
-  const Point axis = std::sin(between - turn) * a.axis + std::sin(turn) * b.axis;
-  return {axis.normalized(), half};
+  const ConeSum sum = Sum(a, b);
+  if (sum.holder != nullptr) return *sum.holder;
+  if (sum.sin_s <= 0) return {a.axis};  // s in [180, 360) degrees, or either cone was not narrow
+  // s / 2, and the turn s / 2 - ta; the axis is sin(beta - turn) a + sin(turn) b, normalised.
+  const double ch = std::sqrt((1 + sum.cos_s) / 2), sh = std::sqrt((1 - sum.cos_s) / 2);
+  const double st = sh * a.cos_half - ch * a.sin_half, ct = ch * a.cos_half + sh * a.sin_half;
+  const Point axis = (sum.sin_beta * ct - sum.cos_beta * st) * a.axis + st * b.axis;
+  return {axis.normalized(), ch, sh};
+}
+
+// Union(a, b).Narrow() without the union's axis.
+template <typename Real>
+bool SelfCollision<Real>::NarrowTogether(const Cone& a, const Cone& b) {
+  const ConeSum sum = Sum(a, b);
+  return sum.holder != nullptr ? sum.holder->Narrow() : sum.sin_s > 0;
+}
+
+// Where Union starts: the angle beta between the axes; the cone holding the other, if one does;
+// else s = beta + ta + tb. Either cone open: s is reported as 180 degrees.
+template <typename Real>
+typename SelfCollision<Real>::ConeSum SelfCollision<Real>::Sum(const Cone& a, const Cone& b) {
+  ConeSum sum;
+  if (!a.Narrow() || !b.Narrow()) return sum;
+  const double cb = std::clamp(a.axis.dot(b.axis), -1.0, 1.0), sb = std::sqrt((1 - cb) * (1 + cb));
+  sum.cos_beta = cb;
+  sum.sin_beta = sb;
+  // x holds y when beta + ty <= tx: beta + ty < 270 degrees and tx < 90, so cosines decide.
+  const auto holds = [cb, sb](const Cone& x, const Cone& y) {
+    return cb * y.cos_half - sb * y.sin_half >= x.cos_half;
+  };
+  sum.holder = holds(a, b) ? &a : holds(b, a) ? &b : nullptr;
+  if (sum.holder != nullptr) return sum;
+  const double c1 = cb * a.cos_half - sb * a.sin_half, s1 = sb * a.cos_half + cb * a.sin_half;  // beta + ta
+  sum.cos_s = c1 * b.cos_half - s1 * b.sin_half;
+  sum.sin_s = s1 * b.cos_half + c1 * b.sin_half;
+  return sum;
 }
 
 // A region whose cone is under 90 degrees cannot meet itself; otherwise its halves are
@@ -205,7 +281,7 @@ typename SelfCollision<Real>::Cone SelfCollision<Real>::Union(const Cone& a, con
 template <typename Real>
 void SelfCollision<Real>::SelfPairs(int r, std::vector<std::array<int, 2>>* pairs) const {
   const PatchRegion& region = patches_.regions[r];
-  if (region_cone_[r].half_angle < kPi / 2) return;
+  if (region_cone_[r].Narrow()) return;
   if (region.leaf()) {
     pairs->push_back({region.patch, region.patch});
     return;
@@ -221,7 +297,7 @@ template <typename Real>
 void SelfCollision<Real>::CrossPairs(int a, int b, std::vector<std::array<int, 2>>* pairs) const {
   const PatchRegion &first = patches_.regions[a], &second = patches_.regions[b];
   if (!region_box_[a].Overlaps(region_box_[b])) return;
-  if (first.Touches(second) && Union(region_cone_[a], region_cone_[b]).half_angle < kPi / 2) return;
+  if (first.Touches(second) && NarrowTogether(region_cone_[a], region_cone_[b])) return;
   if (first.leaf() && second.leaf()) {
     if (!first.Touches(second) && Separated(first.patch, second.patch)) return;
     pairs->push_back({std::min(first.patch, second.patch), std::max(first.patch, second.patch)});
@@ -255,7 +331,10 @@ bool SelfCollision<Real>::Separated(int p, int q) const {
 template <typename Real>
 void SelfCollision<Real>::Candidates(const std::vector<std::array<int, 2>>& patch_pairs) {
   candidates_.clear();
+  boxed_.assign(patches_.patches.size(), false);
   for (const auto& [p, q] : patch_pairs) {
+    BoxPatch(p);
+    BoxPatch(q);
     AddPairs(p, q);
     if (p != q) AddPairs(q, p);
   }
@@ -317,6 +396,7 @@ void SelfCollision<Real>::Proximity() {
   for (const Pair& pair : candidates_) {
     const std::array<int, 4> n = Nodes(pair);
     const std::array<Point, 4> start{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])};
+    if (ApartAlongAnAxis(pair.edges ? 2 : 1, start, thickness_)) continue;
     const std::array<double, 4> k = ClosestWeights(pair.edges, start);
     const Point gap = Gap(k, start);
     const double distance = gap.norm();

@@ -86,23 +86,32 @@ class SelfCollision {
     }
   };
 
+  /// Positions, one row per node (or normals, one per triangle): x, y, z in columns, so that
+  /// each coordinate is contiguous.
+  using Positions = Eigen::Array<double, Eigen::Dynamic, 3>;
+
   void Load(const ClothModel<Real>& model, const ClothState<Real>& start, const ClothState<Real>& end);
-  /// The directions a surface's normals take: within half_angle rad of the unit axis.
+  /// The directions a surface's normals take: within a half-angle theta of the unit axis, kept
+  /// as its cosine and sine. Narrow: theta under 90 degrees, so the surface cannot meet itself.
   struct Cone {
     Point axis;
-    double half_angle = 0;
+    double cos_half = -1, sin_half = 0;  ///< the default: 180 degrees, any direction
+    bool Narrow() const { return cos_half > 0; }
   };
-  struct TriangleNormal {
-    Point start, end;    ///< unnormalised, at the step's start and end
-    double longest = 0;  ///< m^2, the longer of the two
-    double curl = 0;     ///< m^2, >= |du x dv|: bounds how far the normal strays between them
-  };
-
   void SweptBoxes();
   void TriangleNormals();
+  static void CellNormals(const Positions& x, int top, int bottom, int cells, int first, Positions* normals);
+  void BoxPatch(int patch);
   Cone PatchCone(const ClothPatch& patch) const;
   void RegionBounds();
+  /// Two narrow cones' sum of angles, in cosines and sines (self_collision.cpp).
+  struct ConeSum {
+    const Cone* holder = nullptr;  ///< the cone that holds the other, if one does
+    double cos_beta = 1, sin_beta = 0, cos_s = -1, sin_s = 0;
+  };
+  static ConeSum Sum(const Cone& a, const Cone& b);
   static Cone Union(const Cone& a, const Cone& b);
+  static bool NarrowTogether(const Cone& a, const Cone& b);
   void SelfPairs(int region, std::vector<std::array<int, 2>>* pairs) const;
   void CrossPairs(int a, int b, std::vector<std::array<int, 2>>* pairs) const;
   bool Separated(int p, int q) const;
@@ -116,11 +125,10 @@ class SelfCollision {
   bool Push(const std::array<int, 4>& nodes, const std::array<double, 4>& weights, const Point& normal,
             double speed);
   void Hold(int node);
-  /// Positions, one row per node: x, y, z in columns, so that each coordinate is contiguous.
-  using Positions = Eigen::Array<double, Eigen::Dynamic, 3>;
-  Point Start(int node) const { return start_.row(node).transpose().matrix(); }
-  Point End(int node) const { return end_.row(node).transpose().matrix(); }
-  Point Integrated(int node) const { return integrated_.row(node).transpose().matrix(); }
+  Point Start(int node) const { return Row(start_, node); }
+  Point End(int node) const { return Row(end_, node); }
+  static Point Row(const Positions& rows, int i) { return rows.row(i).transpose().matrix(); }
+  Point Integrated(int node) const { return Row(integrated_, node); }
   bool Moved(int node) const { return (end_.row(node) != integrated_.row(node)).any(); }
   Point Velocity(int node) const { return (End(node) - Start(node)) / dt_; }
 
@@ -134,12 +142,18 @@ class SelfCollision {
   // inverse mass (0 when pinned or held), swept box grown by h/2.
   Positions start_, end_, integrated_;
   std::vector<double> inverse_mass_;
-  std::vector<Box> node_box_, triangle_box_, edge_box_;
-  std::vector<int> leaf_region_;                 ///< each patch's region
-  std::vector<Box> region_box_;                  ///< per region, its nodes' swept boxes together
-  std::vector<Cone> region_cone_;                ///< per region; half_angle >= pi/2: it may meet itself
-  Eigen::VectorXd moved_by_;                     ///< m, per node, |x1 - x0|
-  std::vector<TriangleNormal> normals_;          ///< per triangle
+  std::vector<Box> node_box_;
+  std::vector<Box> triangle_box_, edge_box_;  ///< of the patches a pair named (BoxPatch)
+  std::vector<char> boxed_;                   ///< per patch: whether BoxPatch has made its boxes
+  std::vector<int> leaf_region_;              ///< each patch's region
+  std::vector<Box> region_box_;               ///< per region, its nodes' swept boxes together
+  std::vector<Cone> region_cone_;             ///< per region
+  Eigen::VectorXd moved_by_;                  ///< m, per node, |x1 - x0|
+  // Per triangle, in ClothMesh order: its normal (unnormalised, m^2) at the step's start and
+  // end, the longer of the two, and curl >= |du x dv|, which bounds how far the normal strays
+  // between them (self_collision.cpp).
+  Positions normal_start_, normal_end_;
+  Eigen::ArrayXd normal_longest_, normal_curl_;
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
   std::vector<Pair> candidates_;
   std::vector<int> near_;  ///< scratch: one patch's primitives inside another's box
