@@ -73,20 +73,38 @@ void TileStream::RequestKeyframe(int64_t request_id) {
 
 // image => per-tile hashes => the tiles to send (changed, keyframe, rolling) => compressed => manifest
 EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInfo& info, int threads) {
-  if (image.width != width_ || image.height != height_) {  // a new size: start afresh
-    width_ = image.width;
-    height_ = image.height;
-    tiles_x_ = (width_ + tile_size_ - 1) / tile_size_;
-    tiles_y_ = (height_ + tile_size_ - 1) / tile_size_;
-    sent_hash_.assign(size_t(tiles_x_) * tiles_y_, 0);
-    ever_sent_.assign(sent_hash_.size(), false);
-    rolling_next_ = 0;
-  }
-  const int tiles = tiles_x_ * tiles_y_;
+  if (image.width != width_ || image.height != height_) Resize(image.width, image.height);
   const bool keyframe = keyframe_requested_ || frames_since_keyframe_ >= kKeyframeInterval ||
                         std::find(ever_sent_.begin(), ever_sent_.end(), false) != ever_sent_.end();
+  const std::vector<uint64_t> hashes = HashTiles(image, threads);
+  EncodedFrame frame;
+  std::vector<int32_t> chosen = Choose(hashes, keyframe);
+  frame.tiles = Compress(image, info, chosen, hashes, threads);
+  for (const tile_t& tile : frame.tiles) frame.encoded_bytes += tile.data.size();
+  frame.manifest = Manifest(image, info, keyframe, std::move(chosen));
+  if (keyframe) {
+    keyframe_requested_ = false;
+    frames_since_keyframe_ = 0;
+  } else {
+    ++frames_since_keyframe_;
+  }
+  return frame;
+}
 
-  // Hash every tile where it lies; pick those to send.
+// A new size: every tile is new, so the next frame is a keyframe.
+void TileStream::Resize(int width, int height) {
+  width_ = width;
+  height_ = height;
+  tiles_x_ = (width_ + tile_size_ - 1) / tile_size_;
+  tiles_y_ = (height_ + tile_size_ - 1) / tile_size_;
+  sent_hash_.assign(size_t(tiles_x_) * tiles_y_, 0);
+  ever_sent_.assign(sent_hash_.size(), false);
+  rolling_next_ = 0;
+}
+
+// Every tile's pixel hash, where it lies in the image.
+std::vector<uint64_t> TileStream::HashTiles(const render::Framebuffer& image, int threads) const {
+  const int tiles = tiles_x_ * tiles_y_;
   std::vector<uint64_t> hashes(tiles);
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
@@ -94,15 +112,31 @@ EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInf
 #pragma omp for schedule(static)
     for (int t = 0; t < tiles; ++t) hashes[t] = TileHash(image, TileRect(t), &scratch);
   }
+  return hashes;
+}
+
+// The tiles to send: all of a keyframe, else those changed since they were last sent and the
+// rolling refresh's next few. They count as sent from here.
+std::vector<int32_t> TileStream::Choose(const std::vector<uint64_t>& hashes, bool keyframe) {
+  const int tiles = static_cast<int>(hashes.size());
   std::vector<int32_t> chosen;
   for (int t = 0; t < tiles; ++t) {
     const bool rolling = (size_t(t) + tiles - rolling_next_) % tiles < size_t(kRollingRefresh);
     if (keyframe || rolling || hashes[t] != sent_hash_[t]) chosen.push_back(t);
   }
   rolling_next_ = (rolling_next_ + kRollingRefresh) % tiles;
+  for (const int32_t t : chosen) {
+    sent_hash_[t] = hashes[t];
+    ever_sent_[t] = true;
+  }
+  return chosen;
+}
 
-  EncodedFrame frame;
-  frame.tiles.resize(chosen.size());
+// The chosen tiles' messages, each compressed on its own (one zstd context per thread).
+std::vector<tile_t> TileStream::Compress(const render::Framebuffer& image, const FrameInfo& info,
+                                         const std::vector<int32_t>& chosen,
+                                         const std::vector<uint64_t>& hashes, int threads) const {
+  std::vector<tile_t> tiles(chosen.size());
   const int count = static_cast<int>(chosen.size());
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
@@ -111,7 +145,7 @@ EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInf
     for (int i = 0; i < count; ++i) {
       const int t = chosen[i];
       const TileBox box = TileRect(t);
-      tile_t& tile = frame.tiles[i];
+      tile_t& tile = tiles[i];
       tile = EncodeTile(TilePixels(image, box.x, box.y, box.width, box.height), context.get());
       tile.utime = info.utime;
       tile.frame_id = next_frame_id_;
@@ -123,13 +157,13 @@ EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInf
       tile.pixel_hash = static_cast<int64_t>(hashes[t]);
     }
   }
-  for (const int32_t t : chosen) {
-    sent_hash_[t] = hashes[t];
-    ever_sent_[t] = true;
-  }
-  for (const tile_t& tile : frame.tiles) frame.encoded_bytes += tile.data.size();
+  return tiles;
+}
 
-  frame_t& manifest = frame.manifest;
+// The FRAME message that closes the frame: its tiles, the whole image's hash and the camera.
+frame_t TileStream::Manifest(const render::Framebuffer& image, const FrameInfo& info, bool keyframe,
+                             std::vector<int32_t> chosen) {
+  frame_t manifest;
   manifest.utime = info.utime;
   manifest.frame_id = next_frame_id_++;
   manifest.step = info.step;
@@ -151,13 +185,7 @@ EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInf
     manifest.camera_target[k] = info.camera_target[k];
   }
   manifest.camera_fov = info.camera_fov;
-  if (keyframe) {
-    keyframe_requested_ = false;
-    frames_since_keyframe_ = 0;
-  } else {
-    ++frames_since_keyframe_;
-  }
-  return frame;
+  return manifest;
 }
 
 }  // namespace flagsim

@@ -66,6 +66,14 @@ class TileStream {
 
  private:
   TileBox TileRect(int tile_index) const;
+  void Resize(int width, int height);
+  std::vector<uint64_t> HashTiles(const render::Framebuffer& image, int threads) const;
+  std::vector<int32_t> Choose(const std::vector<uint64_t>& hashes, bool keyframe);
+  std::vector<tile_t> Compress(const render::Framebuffer& image, const FrameInfo& info,
+                               const std::vector<int32_t>& chosen, const std::vector<uint64_t>& hashes,
+                               int threads) const;
+  frame_t Manifest(const render::Framebuffer& image, const FrameInfo& info, bool keyframe,
+                   std::vector<int32_t> chosen);
 
   int tile_size_;
   int width_ = 0, height_ = 0, tiles_x_ = 0, tiles_y_ = 0;
