@@ -19,6 +19,8 @@
 # Environment:
 #   FLAGSIM_IMAGE           image name (default: flagsim)
 #   FLAGSIM_ENGINE          docker or buildah, to choose instead of detecting
+#   FLAGSIM_MARCH           the image's target CPU (default: x86-64, any; x86-64-v3 for AVX2
+#                           machines only, faster)
 #   FLAGSIM_PULL_BASE=1     buildah: try to pull debian:bookworm from a registry before
 #                           bootstrapping it (off by default: isolated machines would only wait)
 #   FLAGSIM_STORAGE_DRIVER  buildah storage driver (default: vfs)
@@ -28,6 +30,7 @@
 set -euo pipefail
 
 readonly image=${FLAGSIM_IMAGE:-flagsim}
+readonly march=${FLAGSIM_MARCH:-x86-64}
 readonly base_image=debian:bookworm
 readonly suite=bookworm
 readonly keyring=/usr/share/keyrings/debian-archive-keyring.gpg
@@ -89,7 +92,7 @@ stage_npm_ca() {
 # ---- Docker --------------------------------------------------------------------------------------
 docker_build() {
   stage_npm_ca
-  docker build -t "$image" -f "$repo_root/docker/Dockerfile" "$repo_root"
+  docker build --build-arg FLAGSIM_MARCH="$march" -t "$image" -f "$repo_root/docker/Dockerfile" "$repo_root"
 }
 
 docker_run() {
@@ -248,7 +251,7 @@ buildah_build() {
   ensure_base
   stage_npm_ca
   # --layers keeps each step's result, so a source change does not reinstall the toolchain.
-  buildah_cmd bud --pull=never --isolation chroot --layers \
+  buildah_cmd bud --pull=never --isolation chroot --layers --build-arg FLAGSIM_MARCH="$march" \
     -t "$image" -f "$repo_root/docker/Dockerfile" "$repo_root"
 }
 
