@@ -17,6 +17,16 @@ std::string NewClientId() {
 
 }  // namespace
 
+CommandOutcome OutcomeOf(const ack_t& ack) {
+  CommandOutcome outcome;
+  outcome.result = ack.accepted ? CommandOutcome::kAccepted : CommandOutcome::kRejected;
+  outcome.reason = ack.reason;
+  outcome.step = ack.step;
+  outcome.server_id = ack.server_id;
+  outcome.other_servers = ack.other_servers;
+  return outcome;
+}
+
 CommandClient::CommandClient(Bus& bus, const Channels& channels, double timeout_seconds)
     : bus_(bus), timeout_(timeout_seconds), client_id_(NewClientId()) {
   bus_.Subscribe(channels.ack,
@@ -27,9 +37,7 @@ void CommandClient::OnAck(const uint8_t* data, size_t size) {
   std::string error;
   const auto ack = wire::CheckedDecode<ack_t>(data, size, 64 * 1024, &error);
   if (!ack || ack->client_id != client_id_ || ack->sequence != awaited_) return;  // not ours
-  outcome_.result = ack->accepted ? CommandOutcome::kAccepted : CommandOutcome::kRejected;
-  outcome_.reason = ack->reason;
-  outcome_.step = ack->step;
+  outcome_ = OutcomeOf(*ack);
 }
 
 }  // namespace flagsim

@@ -20,9 +20,14 @@ namespace flagsim {
 struct CommandOutcome {
   enum Result { kAccepted, kRejected, kNoAnswer };
   Result result = kNoAnswer;
-  std::string reason;  ///< the server's, when rejected
-  int64_t step = -1;   ///< when accepted: the step at whose start it took effect
+  std::string reason;     ///< the server's, when rejected
+  int64_t step = -1;      ///< when accepted: the step at whose start it took effect
+  int64_t server_id = 0;  ///< the answering server's
+  int other_servers = 0;  ///< other servers it hears on the prefix: they took the command too
 };
+
+/// What an ACK says about its command.
+CommandOutcome OutcomeOf(const ack_t& ack);
 
 class CommandClient {
  public:

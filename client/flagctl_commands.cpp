@@ -43,6 +43,13 @@ struct Link {
 };
 
 int Report(const Link& link, const CommandOutcome& outcome) {
+  if (outcome.other_servers > 0) {
+    std::fprintf(stderr,
+                 "flagctl: warning: the server that answered (id %016llx) hears %d other server(s) on prefix "
+                 "%s: each takes this command too, and their streams interleave\n",
+                 static_cast<unsigned long long>(outcome.server_id), outcome.other_servers,
+                 link.channels.prefix.c_str());
+  }
   switch (outcome.result) {
     case CommandOutcome::kAccepted:
       std::printf("accepted at step %lld\n", static_cast<long long>(outcome.step));

@@ -86,6 +86,14 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;
   if (!status.last_recovery.empty()) out << "last recovery:     " << status.last_recovery << "\n";
+  std::snprintf(text, sizeof(text), "server:            id %016llx",
+                static_cast<unsigned long long>(status.server_id));
+  out << text;
+  if (status.other_servers > 0) {
+    out << ", and " << status.other_servers
+        << " other server(s) on this prefix: each takes every command, their streams interleave";
+  }
+  out << "\n";
 }
 
 namespace {

@@ -119,7 +119,9 @@ json StatusJson(const status_t& s) {
           {"commands_rejected", s.commands_rejected},
           {"messages_dropped", s.messages_dropped},
           {"recoveries", s.recoveries},
-          {"last_recovery", s.last_recovery}};
+          {"last_recovery", s.last_recovery},
+          {"server_id", std::to_string(s.server_id)},  // a string: 63 bits do not fit a JavaScript number
+          {"other_servers", s.other_servers}};
 }
 
 json ParameterValue(const parameter_t& parameter) { return ValueOfKind(parameter, parameter.value); }

@@ -23,10 +23,7 @@ void CommandRelay::OnAck(const ack_t& ack) {
   if (ack.client_id != client_id_) return;
   const auto found = pending_.find(ack.sequence);
   if (found == pending_.end()) return;  // answered already, or timed out
-  CommandOutcome outcome;
-  outcome.result = ack.accepted ? CommandOutcome::kAccepted : CommandOutcome::kRejected;
-  outcome.reason = ack.reason;
-  outcome.step = ack.step;
+  const CommandOutcome outcome = OutcomeOf(ack);
   const Done done = std::move(found->second.done);
   pending_.erase(found);
   done(outcome, ack.sequence);

@@ -23,6 +23,7 @@ json CommandResultJson(const CommandOutcome& outcome, const std::string& channel
       {"answered", answered},
       {"reason", answered ? outcome.reason : "no answer from flagd (an ACK) within the gateway's timeout"},
       {"step", outcome.step},
+      {"other_servers", outcome.other_servers},
       {"channel", channel},
       {"sequence", sequence}};
 }

@@ -126,6 +126,10 @@ void CommandIntake::Answer(ack_t ack, int64_t recoveries_before) {
     spdlog::warn("{} from {} #{}: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
   }
   ack.utime = UnixMicros();
+  if (presence_ != nullptr) {
+    ack.server_id = presence_->id();
+    ack.other_servers = presence_->others();
+  }
   const auto last = last_ack_.find(ack.client_id);
   const bool newer_came = last != last_ack_.end() && last->second.sequence != ack.sequence;
   if (!ack.client_id.empty() && !newer_came) last_ack_[ack.client_id] = ack;

@@ -25,6 +25,7 @@
 #include "flagsim/refresh_request_t.hpp"
 #include "flagsim/wind_command_t.hpp"
 #include "journal.hpp"
+#include "server_presence.hpp"
 #include "server_stats.hpp"
 #include "session.hpp"
 
@@ -52,6 +53,8 @@ class CommandIntake {
 
   /// Where accepted commands are journaled (APPLIED), if anywhere.
   void SetJournal(Journal* journal) { journal_ = journal; }
+  /// Whose id, and how many other servers, every ACK states (server_presence.hpp), if anyone's.
+  void SetPresence(const ServerPresence* presence) { presence_ = presence; }
 
   /// Once after REFRESH requests: the latest request id (a full STATE and PARAMS and a
   /// keyframe are due); -1 when none came.
@@ -85,6 +88,7 @@ class CommandIntake {
   Session& session_;
   ServerStats& stats_;
   Journal* journal_ = nullptr;
+  const ServerPresence* presence_ = nullptr;
   std::map<std::string, ack_t> last_ack_;  ///< per client id: the answer to its latest command
   std::vector<Settling> settling_;         ///< in the order they were applied
   bool params_changed_ = false;

@@ -20,6 +20,7 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
       channels_(channels),
       options_(options),
       session_(scene),
+      presence_(bus, channels),
       inputs_(options.inputs_log.empty()
                   ? nullptr
                   : std::make_unique<InputsLog>(bus, options.inputs_log, UnixMicros())),
@@ -27,6 +28,7 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
       intake_(bus, channels, session_, stats_),
       paced_(bus) {
   intake_.SetJournal(&journal_);
+  intake_.SetPresence(&presence_);
 }
 
 void Server::Run(const std::atomic<bool>& stop) {
@@ -118,7 +120,9 @@ void Server::PublishDue(double now) {
 
 void Server::PublishState() {
   const double start = MonotonicSeconds();
-  bus_.Publish(channels_.state, MakeStateMessage(session_, UnixMicros()));
+  state_t state = MakeStateMessage(session_, UnixMicros());
+  state.server_id = presence_.id();
+  bus_.Publish(channels_.state, state);
   stats_.publish_seconds += MonotonicSeconds() - start;
   ++stats_.states_published;
 }
@@ -166,7 +170,10 @@ void Server::PublishStatus(double now) {
   window.sim_seconds = session_.simulation().state().time - window_sim_start_;
   window.bytes = double(bus_.bytes_published() - window_bytes_start_);
   window.uptime = now - start_wall_;
-  bus_.Publish(channels_.status, MakeStatusMessage(session_, stats_, window, UnixMicros()));
+  status_t status = MakeStatusMessage(session_, stats_, window, UnixMicros());
+  status.server_id = presence_.id();
+  status.other_servers = presence_.others();
+  bus_.Publish(channels_.status, status);
   stats_.ResetWindow();
   window_wall_start_ = now;
   window_sim_start_ = session_.simulation().state().time;

@@ -23,6 +23,7 @@
 #include "journal.hpp"
 #include "paced_publisher.hpp"
 #include "scene.hpp"
+#include "server_presence.hpp"
 #include "server_stats.hpp"
 #include "session.hpp"
 #include "sim_cadence.hpp"
@@ -51,6 +52,7 @@ class Server {
 
   const Session& session() const { return session_; }
   const ServerStats& stats() const { return stats_; }
+  const ServerPresence& presence() const { return presence_; }
 
   static constexpr double kMaxCatchUp = 0.1;  ///< s of wall time a late loop may step to catch up
 
@@ -69,6 +71,7 @@ class Server {
   ServerOptions options_;
   Session session_;
   ServerStats stats_;
+  ServerPresence presence_;            ///< this server's id, and the others heard on the prefix
   std::unique_ptr<InputsLog> inputs_;  ///< null unless recording its inputs
   Journal journal_;
   CommandIntake intake_;

@@ -11,8 +11,10 @@ export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
 prefix=ITEST_
 work=$(mktemp -d)
 server=""
+second=""
 cleanup() {
   [[ -n $server ]] && kill "$server" 2>/dev/null || true
+  [[ -n $second ]] && kill "$second" 2>/dev/null || true
   rm -rf "$work"
 }
 trap cleanup EXIT
@@ -137,6 +139,22 @@ expect 0 "record two seconds" "$flagctl" --prefix $prefix record -o "$work/sessi
 contains "events" "  and report them"
 expect 0 "watch the live stream" "$flagctl" --prefix $prefix watch --duration 2.5
 contains "states received" "  and see states"
+
+echo "-- a second server on the same prefix"
+"$flagd" --prefix $prefix --log-level warn >"$work/second.log" 2>&1 &
+second=$!
+for _ in $(seq 50); do  # until the first hears the second's STATUS
+  "$flagctl" --prefix $prefix --timeout 0.5 status 2>/dev/null | grep -q "other server" && break
+  sleep 0.2
+done
+expect 0 "status names the other server" "$flagctl" --prefix $prefix status
+contains "1 other server(s) on this prefix" "  and counts it"
+expect 0 "a command both take is accepted" "$flagctl" --prefix $prefix wind 6 0 1
+contains "hears 1 other server(s) on prefix $prefix" "  with a warning that another took it too"
+kill -TERM "$second"
+wait "$second" || true
+cp "$work/second.log" "$work/out"
+contains "another server (id" "the second server warned loudly"
 
 echo "-- stopping"
 kill -TERM "$server"
