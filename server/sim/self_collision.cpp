@@ -90,14 +90,13 @@ bool SelfCollision<Real>::Resolve(const ClothModel<Real>& model, const SimParams
   }
   bool changed = false;
   for (int i = 0; i < state->num_nodes(); ++i) {
-    if (!Moved(i)) continue;
-    const Point end = End(i), dv = (end - Integrated(i)) / dt;
-    state->x[i] = Real(end.x());
-    state->y[i] = Real(end.y());
-    state->z[i] = Real(end.z());
-    state->vx[i] = Real(state->vx[i] + dv.x());
-    state->vy[i] = Real(state->vy[i] + dv.y());
-    state->vz[i] = Real(state->vz[i] + dv.z());
+    if (!Moved(i) && (velocity_.row(i) == integrated_velocity_.row(i)).all()) continue;
+    state->x[i] = Real(end_(i, 0));
+    state->y[i] = Real(end_(i, 1));
+    state->z[i] = Real(end_(i, 2));
+    state->vx[i] = Real(velocity_(i, 0));
+    state->vy[i] = Real(velocity_(i, 1));
+    state->vz[i] = Real(velocity_(i, 2));
     ++stats_.moved;
     changed = true;
   }
@@ -110,13 +109,16 @@ void SelfCollision<Real>::Load(const ClothModel<Real>& model, const ClothState<R
   const int n = model.num_nodes();
   start_.resize(n, 3);
   end_.resize(n, 3);
+  velocity_.resize(n, 3);
   inverse_mass_.resize(n);
   for (int i = 0; i < n; ++i) {
     start_.row(i) << double(start.x[i]), double(start.y[i]), double(start.z[i]);
     end_.row(i) << double(end.x[i]), double(end.y[i]), double(end.z[i]);
+    velocity_.row(i) << double(end.vx[i]), double(end.vy[i]), double(end.vz[i]);
     inverse_mass_[i] = double(model.inverse_mass[i]);
   }
   integrated_ = end_;
+  integrated_velocity_ = velocity_;
 }
 
 template <typename Real>
@@ -441,31 +443,39 @@ int SelfCollision<Real>::Contacts(bool hold) {
 }
 
 // Impulse so that the pair's relative speed along `normal` is at least `speed`.
+// The pair's relative normal speed over the step, sum k_i v_i . n with v_i = (x1 - x0) / dt,
+// raised to `speed` by an impulse that moves the end positions; then the same for the end
+// velocities, each by an impulse of its own (none if they already part at `speed`).
 template <typename Real>
 bool SelfCollision<Real>::Push(const std::array<int, 4>& nodes, const std::array<double, 4>& weights,
                                const Point& normal, double speed) {
-  double relative = 0, resistance = 0;
+  double relative = 0, relative_end = 0, resistance = 0;
   for (int i = 0; i < 4; ++i) {
     relative += weights[i] * Velocity(nodes[i]).dot(normal);
+    relative_end += weights[i] * Row(velocity_, nodes[i]).dot(normal);
     resistance += weights[i] * weights[i] * inverse_mass_[nodes[i]];
   }
   if (relative >= speed || resistance == 0) return false;
   const double impulse = (speed - relative) / resistance;
+  const double impulse_end = std::max(0.0, speed - relative_end) / resistance;
   for (int i = 0; i < 4; ++i) {
-    end_.row(nodes[i]) += (dt_ * weights[i] * inverse_mass_[nodes[i]] * impulse * normal).transpose().array();
+    const Point along = weights[i] * inverse_mass_[nodes[i]] * normal;
+    end_.row(nodes[i]) += (dt_ * impulse * along).transpose().array();
+    velocity_.row(nodes[i]) += (impulse_end * along).transpose().array();
   }
   return true;
 }
 
+// The fail-safe: the node stays where it began the step and ends it at rest.
 template <typename Real>
 void SelfCollision<Real>::Hold(int node) {
-  if (inverse_mass_[node] == 0 && End(node) == Start(node)) return;
+  if (inverse_mass_[node] == 0 && End(node) == Start(node) && Row(velocity_, node).isZero()) return;
   if (inverse_mass_[node] != 0) ++stats_.held;
   inverse_mass_[node] = 0;
   end_.row(node) = start_.row(node);
+  velocity_.row(node).setZero();
 }
 
-// Holds every node the corrections moved into the pole or the ground; true if there were none.
 template <typename Real>
 bool SelfCollision<Real>::HoldThoseInObstacles() {
   bool outside = true;

@@ -222,29 +222,51 @@ void Simulation<Real>::Wake() {
   calm_steps_ = 0;
 }
 
-// The integrator's substeps, the obstacles after each, then self-collision on a sound result.
-// Returns Problem() of the end state, checked again only if the collision changed it.
+// The integrator's substeps, the obstacles after each, and self-collision on a sound result
+// after every group of substeps (CollisionPasses). Returns Problem() of the end state.
 template <typename Real>
 std::string Simulation<Real>::Advance(double* fastest) {
   const int n = substeps();
   const double start = state_.time, h = params_.dt / n;
   const StepContext<Real> context{model_, params_, wind_, evaluator_};
   const Obstacles obstacles = Obstacles::Of(params_);
-  if (params_.self_collision) step_start_ = state_;
-  for (int i = 0; i < n; ++i) {
-    integrator_->Substep(context, h, &state_);
-    PushOutOfObstacles(model_, obstacles, &state_);
+  const int passes = params_.self_collision ? CollisionPasses(n) : 1;
+  std::string problem;
+  for (int pass = 1, done = 0; pass <= passes && problem.empty(); ++pass) {
+    if (params_.self_collision) step_start_ = state_;
+    const int until = n * pass / passes, from = done;
+    for (; done < until; ++done) {
+      integrator_->Substep(context, h, &state_);
+      PushOutOfObstacles(model_, obstacles, &state_);
+    }
+    // A state already running away is the guard's to roll back, not worth colliding: its swept
+    // boxes would cover everything.
+    problem = Problem(fastest);
+    if (problem.empty() && params_.self_collision &&
+        self_collision_->Resolve(model_, params_, (until - from) * h, step_start_, &state_)) {
+      problem = Problem(fastest);
+    }
   }
   state_.time = start + params_.dt;
   ++state_.step;
-  // A state already running away is the guard's to roll back, not worth colliding: its swept
-  // boxes would cover everything.
-  std::string problem = Problem(fastest);
-  if (problem.empty() && params_.self_collision &&
-      self_collision_->Resolve(model_, params_, params_.dt, step_start_, &state_)) {
-    problem = Problem(fastest);
-  }
   return problem;
+}
+
+// Self-collision stops a pair where their paths meet, each node by the whole of its approach
+// over the interval, while its neighbours that met nothing go on: so nodes must not move much
+// further than a spring's length between passes. At the speed of the fastest node at the
+// step's start, a pass after every kCollisionReach of the shortest spacing travelled (at most
+// one per substep); one pass where nothing is that fast.
+template <typename Real>
+int Simulation<Real>::CollisionPasses(int substeps) const {
+  double fastest_squared = 0;
+  for (int i = 0; i < state_.num_nodes(); ++i) {
+    const double vx = state_.vx[i], vy = state_.vy[i], vz = state_.vz[i];
+    fastest_squared = std::max(fastest_squared, vx * vx + vy * vy + vz * vz);
+  }
+  const double spacing = std::min(double(model_.dx), double(model_.dy));
+  const double passes = std::ceil(std::sqrt(fastest_squared) * params_.dt / (kCollisionReach * spacing));
+  return int(std::clamp(passes, 1.0, double(substeps)));
 }
 
 template <typename Real>

@@ -5,10 +5,12 @@
 //   advance      n substeps of the integrator: n from its stability limit (with a safety
 //                factor) or the `substeps` parameter, times the guard's factor; after each, nodes
 //                in the pole or the ground are put back on its surface (obstacles.hpp)
-//   collide      with self_collision, the step's motion is corrected so that the cloth does not
-//                pass through itself (self_collision.hpp). Both corrections keep what the
-//                integrator carries between substeps: a lag of one substep at a contact, as
-//                with SetControls, rather than a new factorisation at every touch.
+//   collide      with self_collision, the motion is corrected so that the cloth does not pass
+//                through itself (self_collision.hpp): after the step, or after each of several
+//                groups of its substeps where nodes move fast for the grid (CollisionPasses).
+//                Both corrections keep what the integrator carries between substeps: a lag of
+//                one substep at a contact, as with SetControls, rather than a new
+//                factorisation at every touch.
 //   guard        a state with non-finite values, a runaway node or a runaway spring rolls back
 //                to the checkpoint and redoes the lost steps with twice the substeps; past
 //                kMaxGuardFactor an explicit integrator gives way to an unconditionally stable
@@ -65,6 +67,10 @@ inline constexpr int kMaxSubsteps = 4096;
 /// accepts at most. Above kMaxSubsteps on purpose: a flag past that limit gets its need computed
 /// as it is, so that the check against kMaxSubsteps reports it rather than a clamped value.
 inline constexpr int kMaxComputedSubsteps = 1 << 16;
+
+/// Self-collision passes come after every this much of the shortest grid spacing that the
+/// fastest node travels (Simulation::CollisionPasses).
+inline constexpr double kCollisionReach = 0.5;
 
 /// Substeps per step that `params` asks for: its `substeps` or, when that is 0, enough to stay
 /// within the integrator's stability limit on the grid's frequency bound (with kSafety).
@@ -147,6 +153,7 @@ class Simulation {
   void ChooseIntegrator();
   /// One step of substeps and corrections; returns Problem() of the result.
   std::string Advance(double* fastest = nullptr);
+  int CollisionPasses(int substeps) const;
   /// "" if the state is sound, else what is wrong with it; `fastest` gets the top node speed.
   std::string Problem(double* fastest = nullptr) const;
   void WatchForSleep(double fastest);
