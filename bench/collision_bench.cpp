@@ -21,8 +21,9 @@
 //
 // Columns of the table and the CSV: preset, cols, rows, substeps (per step), seconds (simulated),
 // ms_off, ms_on, ratio, run_ms_off, run_ms_on, run_ratio, patch_pairs, candidates, contacts, held
-// (means per step with self-collision on: pairs of patches examined, primitive pairs whose swept
-// boxes overlap, impulses, nodes the fail-safe kept still), crossings_per_s_off, crossings_per_s_on.
+// (means per step with self-collision on, summed over its passes: pairs of patches examined,
+// primitive pairs whose swept boxes overlap, impulses, nodes the fail-safe kept still),
+// crossings_per_s_off, crossings_per_s_on, passes (of self-collision per step, mean).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -63,8 +64,9 @@ struct Run {
   std::unique_ptr<Simulation> simulation;
   double cpu_seconds = 0;  ///< of stepping alone
   int64_t steps = 0;
-  int64_t crossings = 0;                          ///< crossing triangle pairs, summed over the sampled states
-  double patch_pairs = 0, candidates = 0, contacts = 0, held = 0;  ///< sums over steps of self_collision_stats()
+  int64_t crossings = 0;  ///< crossing triangle pairs, summed over the sampled states
+  double passes = 0, patch_pairs = 0, candidates = 0, contacts = 0,
+         held = 0;  ///< sums over steps of self_collision_stats()
 };
 
 Run StartRun(const Scene& scene, const sim::SimParams& params, bool self_collision) {
@@ -80,6 +82,7 @@ void StepTimed(int steps, Run* run) {
     run->simulation->Step();
     run->cpu_seconds += lab::ThreadCpuSeconds() - start;
     const sim::SelfCollisionStats& stats = run->simulation->self_collision_stats();
+    run->passes += stats.passes;
     run->patch_pairs += stats.patch_pairs;
     run->candidates += stats.candidates;
     run->contacts += stats.contacts;
@@ -161,9 +164,10 @@ void Measure(const Case& one, const Options& options, Table* table) {
               std::to_string(on.simulation->substeps()), Table::Number(simulated),
               Table::Number(1e3 * timing.off), Table::Number(1e3 * timing.on), Table::Number(timing.ratio),
               Table::Number(1e3 * run_off), Table::Number(1e3 * run_on), Table::Number(run_on / run_off),
-              Table::Number(on.patch_pairs / steps), Table::Number(on.candidates / steps), Table::Number(on.contacts / steps),
-              Table::Number(on.held / steps), Table::Number(double(off.crossings) / simulated),
-              Table::Number(double(on.crossings) / simulated)});
+              Table::Number(on.patch_pairs / steps), Table::Number(on.candidates / steps),
+              Table::Number(on.contacts / steps), Table::Number(on.held / steps),
+              Table::Number(double(off.crossings) / simulated),
+              Table::Number(double(on.crossings) / simulated), Table::Number(on.passes / steps)});
 }
 
 }  // namespace
@@ -179,10 +183,10 @@ int main(int argc, char** argv) {
   app.add_option("--seconds", options.seconds, "simulated seconds at 32 x 24 (divided by the scale above)")
       ->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
-  flagsim::lab::Table table(
-      {"preset", "cols", "rows", "substeps", "seconds", "ms_off", "ms_on", "ratio", "run_ms_off", "run_ms_on",
-       "run_ratio", "patch_pairs", "candidates", "contacts", "held", "crossings_per_s_off", "crossings_per_s_on"},
-      options.csv);
+  flagsim::lab::Table table({"preset", "cols", "rows", "substeps", "seconds", "ms_off", "ms_on", "ratio",
+                             "run_ms_off", "run_ms_on", "run_ratio", "patch_pairs", "candidates", "contacts",
+                             "held", "crossings_per_s_off", "crossings_per_s_on", "passes"},
+                            options.csv);
   const std::vector<flagsim::bench::Case> cases = {{"breeze", 1}, {"breeze", 2}, {"breeze", 4},
                                                    {"breeze", 8}, {"calm", 1},   {"gale", 1}};
   for (const flagsim::bench::Case& one : cases) flagsim::bench::Measure(one, options, &table);

@@ -63,6 +63,7 @@ template <typename Real>
 bool SelfCollision<Real>::Resolve(const ClothModel<Real>& model, const SimParams& params, double dt,
                                   const ClothState<Real>& start, ClothState<Real>* state) {
   stats_ = {};
+  stats_.passes = 1;
   thickness_ = std::min(params.thickness, kSpacingShare * std::min(double(model.dx), double(model.dy)));
   dt_ = dt;
   obstacles_ = Obstacles::Of(params);

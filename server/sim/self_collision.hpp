@@ -40,6 +40,7 @@
 // the same result at any thread count.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -53,14 +54,26 @@
 
 namespace flagsim::sim {
 
-/// What the last Resolve did.
+/// What the last Resolve did; for a step, the sum over its passes.
 struct SelfCollisionStats {
+  int passes = 0;       ///< Resolve calls
   int patch_pairs = 0;  ///< pairs of patches examined (a patch with itself counts once)
   int candidates = 0;   ///< primitive pairs whose swept boxes overlap, first round
   int contacts = 0;     ///< impulses applied, all rounds
-  int rounds = 0;
-  int held = 0;   ///< nodes kept at their start positions by the fail-safe
-  int moved = 0;  ///< nodes whose step was corrected
+  int rounds = 0;       ///< the most of any pass
+  int held = 0;         ///< nodes kept at their start positions by the fail-safe
+  int moved = 0;        ///< nodes whose step was corrected
+
+  SelfCollisionStats& operator+=(const SelfCollisionStats& pass) {
+    passes += pass.passes;
+    patch_pairs += pass.patch_pairs;
+    candidates += pass.candidates;
+    contacts += pass.contacts;
+    rounds = std::max(rounds, pass.rounds);
+    held += pass.held;
+    moved += pass.moved;
+    return *this;
+  }
 };
 
 template <typename Real>

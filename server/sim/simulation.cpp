@@ -231,6 +231,7 @@ std::string Simulation<Real>::Advance(double* fastest) {
   const StepContext<Real> context{model_, params_, wind_, evaluator_};
   const Obstacles obstacles = Obstacles::Of(params_);
   const int passes = params_.self_collision ? CollisionPasses(n) : 1;
+  collision_stats_ = {};
   std::string problem;
   for (int pass = 1, done = 0; pass <= passes && problem.empty(); ++pass) {
     if (params_.self_collision) step_start_ = state_;
@@ -242,9 +243,11 @@ std::string Simulation<Real>::Advance(double* fastest) {
     // A state already running away is the guard's to roll back, not worth colliding: its swept
     // boxes would cover everything.
     problem = Problem(fastest);
-    if (problem.empty() && params_.self_collision &&
-        self_collision_->Resolve(model_, params_, (until - from) * h, step_start_, &state_)) {
-      problem = Problem(fastest);
+    if (problem.empty() && params_.self_collision) {
+      const bool changed =
+          self_collision_->Resolve(model_, params_, (until - from) * h, step_start_, &state_);
+      collision_stats_ += self_collision_->stats();
+      if (changed) problem = Problem(fastest);
     }
   }
   state_.time = start + params_.dt;

@@ -145,7 +145,8 @@ class Simulation {
   const GuardEvent& last_guard_event() const { return last_event_; }
   bool sleeping() const { return sleeping_; }
   /// What self-collision did in the last step (all zero when it is off).
-  const SelfCollisionStats& self_collision_stats() const { return self_collision_->stats(); }
+  /// What self-collision did in the last step, over all its passes.
+  const SelfCollisionStats& self_collision_stats() const { return collision_stats_; }
   uint64_t Hash() const { return StateHash(state_); }
 
  private:
@@ -165,6 +166,7 @@ class Simulation {
   SimParams params_;
   ClothModel<Real> model_;
   std::unique_ptr<SelfCollision<Real>> self_collision_;  ///< built with the model
+  SelfCollisionStats collision_stats_;
   ClothState<Real> state_;
   ClothState<Real> step_start_;  ///< the state before the step being taken
   ClothState<Real> checkpoint_;
