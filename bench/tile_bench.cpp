@@ -5,6 +5,7 @@
 //   build/bench/tile_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
+#include "frame_painter.hpp"
 #include "session.hpp"
 #include "tile_stream.hpp"
 
@@ -18,9 +19,10 @@ void BM_EncodeFrame(benchmark::State& bench) {
   scene.sim.rows = 48;
   Session session(scene);
   for (int i = 0; i < 500; ++i) session.Step();
-  const render::Framebuffer before = session.RenderFrame(1);
+  FramePainter painter;
+  const render::Framebuffer before = painter.Paint(FrameInput::Of(session, 0), 1);
   for (int i = 0; i < 8; ++i) session.Step();
-  const render::Framebuffer after = session.RenderFrame(1);
+  const render::Framebuffer after = painter.Paint(FrameInput::Of(session, 0), 1);
   TileStream tiles;
   int64_t frames = 0;
   double tiles_sent = 0;

@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallel/worker_pool.hpp"
+
 namespace flagsim::render {
 namespace {
 
 // ClipVertex channel layout. Gouraud: front D rgb, S rgb | back D rgb, S rgb | u, v.
 // Flat and Phong: position xyz, normal xyz | the same again | u, v.
 constexpr int kFrontBlock = 0, kBackBlock = 6, kUv = 12;
-constexpr int kChunk = 256;  ///< triangles per primitive-stage work item
+constexpr int kChunk = 256;         ///< triangles per primitive-stage work item
+constexpr int kVertexBlock = 1024;  ///< vertices per vertex-stage work item
 
 void PutShade(const Shade& shade, float* channels) {
   for (int k = 0; k < 3; ++k) {
@@ -131,8 +134,7 @@ void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip
     std::vector<ClipVertex>& out = vertices_[m];
     out.resize(mesh.positions.size());
     const int n = static_cast<int>(mesh.positions.size());
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 1024)
-    for (int i = 0; i < n; ++i) {
+    const auto transform = [&](int i) {
       const Eigen::Vector3f& p = mesh.positions[i];
       const Eigen::Vector3f& normal = mesh.normals[i];
       ClipVertex& v = out[i];
@@ -154,7 +156,11 @@ void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip
           }
         }
       }
-    }
+    };
+    const int blocks = (n + kVertexBlock - 1) / kVertexBlock;
+    ParallelFor(blocks, threads, [&](int block) {
+      for (int i = block * kVertexBlock; i < std::min(n, (block + 1) * kVertexBlock); ++i) transform(i);
+    });
   }
 }
 
@@ -172,8 +178,7 @@ void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int wi
   }
   chunks_.resize(work.size());
   const int items = static_cast<int>(work.size());
-#pragma omp parallel for schedule(dynamic) num_threads(threads) if (threads > 1)
-  for (int w = 0; w < items; ++w) {
+  ParallelFor(items, threads, [&](int w) {
     const Mesh& mesh = scene.meshes[work[w].mesh];
     const std::vector<ClipVertex>& vertices = vertices_[work[w].mesh];
     std::vector<TriangleSetup>& out = chunks_[w].setups;
@@ -199,7 +204,7 @@ void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int wi
       }
     }
     BinChunk(width, height, tile_size, &chunks_[w]);
-  }
+  });
 }
 
 void Renderer::BinChunk(int width, int height, int tile_size, Chunk* chunk) const {
@@ -249,25 +254,22 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height, int ti
 void Renderer::TileStage(const ShadeContext& context, const RenderOptions& options,
                          Framebuffer* framebuffer) {
   const int tiles = tiles_x_ * tiles_y_, size = options.tile_size;
-#pragma omp parallel num_threads(options.threads) if (options.threads > 1)
-  {
-    TileBuffer buffer(size);
-#pragma omp for schedule(dynamic)
-    for (int index = 0; index < tiles; ++index) {
-      TileRect rect;
-      rect.x0 = (index % tiles_x_) * size;
-      rect.y0 = (index / tiles_x_) * size;
-      rect.x1 = std::min(rect.x0 + size, framebuffer->width);
-      rect.y1 = std::min(rect.y0 + size, framebuffer->height);
-      const TileTarget target = buffer.Target(rect);
-      ClearTile(sky_rows_.data(), target);
-      for (const Chunk& chunk : chunks_) {
-        for (const uint32_t i : chunk.bins[index]) RasterizeTriangle(chunk.setups[i], context, target);
-      }
-      for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
-      CopyOut(target, options.keep_depth, framebuffer);
+  std::vector<TileBuffer> buffers;  // one per thread
+  for (int k = 0; k < std::max(1, options.threads); ++k) buffers.emplace_back(size);
+  ParallelForEachParticipant(tiles, options.threads, [&](int index, int participant) {
+    TileRect rect;
+    rect.x0 = (index % tiles_x_) * size;
+    rect.y0 = (index / tiles_x_) * size;
+    rect.x1 = std::min(rect.x0 + size, framebuffer->width);
+    rect.y1 = std::min(rect.y0 + size, framebuffer->height);
+    const TileTarget target = buffers[participant].Target(rect);
+    ClearTile(sky_rows_.data(), target);
+    for (const Chunk& chunk : chunks_) {
+      for (const uint32_t i : chunk.bins[index]) RasterizeTriangle(chunk.setups[i], context, target);
     }
-  }
+    for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
+    CopyOut(target, options.keep_depth, framebuffer);
+  });
 }
 
 }  // namespace flagsim::render

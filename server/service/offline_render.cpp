@@ -60,11 +60,12 @@ void OfflineRender::PublishParams() {
 // state => frame => the caller; => changed tiles => the log, paced (tiles, then the manifest)
 void OfflineRender::DrawFrame() {
   const int threads = session_.scene().sim.threads;
-  const render::Framebuffer& image = session_.RenderFrame(threads);
+  const FrameInput input = FrameInput::Of(session_, log_ != nullptr ? log_->utime() : 0);
+  const render::Framebuffer& image = painter_.Paint(input, threads);
   const int64_t frame_id = stats_.frames++;
   if (on_frame_) on_frame_(frame_id, image);
   if (log_ == nullptr) return;
-  const EncodedFrame frame = tiles_.Encode(image, MakeFrameInfo(session_, log_->utime()), threads);
+  const EncodedFrame frame = tiles_.Encode(image, input.info, threads);
   for (const tile_t& tile : frame.tiles) log_->Enqueue(channels_.tile, Publisher::Encode(tile));
   log_->Enqueue(channels_.frame, Publisher::Encode(frame.manifest));
   stats_.keyframes += frame.manifest.keyframe;

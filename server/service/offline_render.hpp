@@ -18,6 +18,7 @@
 #include <functional>
 
 #include "channels.hpp"
+#include "frame_painter.hpp"
 #include "journal.hpp"
 #include "log_publisher.hpp"
 #include "scene.hpp"
@@ -70,6 +71,7 @@ class OfflineRender {
   LogPublisher* log_;
   FrameSink on_frame_;
   Journal journal_;
+  FramePainter painter_;
   TileStream tiles_;
   SimCadence state_cadence_, params_cadence_, frame_cadence_;
   OfflineRenderStats stats_;

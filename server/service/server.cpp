@@ -10,8 +10,9 @@
 namespace flagsim {
 namespace {
 
-constexpr double kFastBatch = 0.005;  ///< s of wall time stepped back to back in --fast mode
-constexpr double kMaxWait = 0.05;     ///< s, the longest the loop sleeps on the bus
+constexpr double kFastBatch = 0.005;     ///< s of the clock stepped back to back in --fast mode
+constexpr double kMaxWait = 0.05;        ///< s, the longest the loop sleeps on the bus
+constexpr double kKeyframeWait = 0.001;  ///< s, the loop's sleep while a keyframe waits for the stage
 
 }  // namespace
 
@@ -26,22 +27,24 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
                   : std::make_unique<InputsLog>(bus, options.inputs_log, UnixMicros())),
       journal_(inputs_ ? static_cast<Publisher*>(inputs_.get()) : &bus, channels),
       intake_(bus, channels, session_, stats_),
-      paced_(bus) {
+      paced_(bus),
+      frames_([this](const EncodedFrame& frame) { PublishFrame(frame); }) {
   intake_.SetJournal(&journal_);
   intake_.SetPresence(&presence_);
 }
 
 void Server::Run(const std::atomic<bool>& stop) {
   while (!stop.load()) {
-    const double wait = Tick(MonotonicSeconds());
+    const double wait = Tick(options_.clock());
     if (options_.duration > 0 && session_.simulation().state().time >= options_.duration) break;
     bus_.Handle(static_cast<int>(std::ceil(wait * 1000)));
   }
   intake_.FlushPending();
   journal_.End(&session_, UnixMicros());
   if (inputs_) inputs_->Close();
+  frames_.Drain();
   PublishState();  // the last word: where the flag stopped
-  PublishStatus(MonotonicSeconds());
+  PublishStatus(options_.clock());
 }
 
 double Server::Tick(double now) {
@@ -59,34 +62,37 @@ double Server::Tick(double now) {
   // Asleep, steps only move the clock: take them in batches and let the machine rest.
   const double until_step =
       session_.simulation().sleeping() ? kMaxWait : session_.scene().sim.dt - accumulator_;
-  return std::clamp(std::min(until_step, next_second_ - now), 0.0, kMaxWait);
+  const double longest = keyframe_request_ >= 0 ? kKeyframeWait : kMaxWait;
+  return std::clamp(std::min(until_step, next_second_ - now), 0.0, longest);
 }
 
-// Real time: the accumulator owes the simulation the wall time since the last tick, in whole
-// steps; a loop that fell far behind drops the excess rather than spiralling.
+// Real time: the accumulator owes the simulation the clock's time since the last tick, in whole
+// steps; a loop that fell far behind drops the excess rather than spiralling. --fast: steps for
+// kFastBatch of the clock (at least one), then the bus gets its turn.
 void Server::StepDue(double now) {
   const double dt = session_.scene().sim.dt;
-  accumulator_ = std::min(accumulator_ + (now - last_tick_), kMaxCatchUp);
+  accumulator_ = options_.fast ? 0.0 : std::min(accumulator_ + (now - last_tick_), kMaxCatchUp);
   last_tick_ = now;
-  if (options_.fast) accumulator_ = kFastBatch;  // a batch, then the bus gets its turn
   const double deadline = now + (options_.fast ? kFastBatch : kMaxCatchUp);
-  while (accumulator_ >= dt) {
-    if (options_.duration > 0 && session_.simulation().state().time >= options_.duration) break;
-    const double start = MonotonicSeconds();
+  const auto ended = [this] {
+    return options_.duration > 0 && session_.simulation().state().time >= options_.duration;
+  };
+  while ((options_.fast || accumulator_ >= dt) && !ended()) {
+    const double start = options_.clock();
     integrator_replaced_ |= session_.Step();
-    const double end = MonotonicSeconds();
+    const double end = options_.clock();
     ++stats_.steps;
     stats_.step_seconds += end - start;
-    accumulator_ = options_.fast ? accumulator_ - (end - start) : accumulator_ - dt;
+    accumulator_ -= dt;
     AfterStep();
-    if (end > deadline) break;
+    if (end >= deadline) break;
   }
   if (options_.fast) accumulator_ = 0;
 }
 
 // STATE and frames fall due on simulated time: which steps are published is part of the
-// session, not of the machine's speed. STATE goes out at once; a frame is drawn after the
-// stepping (FrameDue), and a second one falling due before that is skipped.
+// session, not of the machine's speed. STATE goes out at once, and so does a frame to the stage
+// (FrameDue), unless the stage or the publisher is still busy with the last.
 void Server::AfterStep() {
   if (inputs_) inputs_->AdvanceTo(session_.simulation().state().time);
   journal_.AtBoundary(&session_, UnixMicros());
@@ -96,6 +102,7 @@ void Server::AfterStep() {
   if (frame_cadence_.Due(time, session_.scene().service.frame_rate)) {
     if (frame_due_) ++stats_.frames_skipped;
     frame_due_ = true;
+    FrameDue();  // at its own step, not after the batch: the stage takes a copy and the loop goes on
   }
 }
 
@@ -105,8 +112,8 @@ void Server::PublishDue(double now) {
   if (refresh) {
     journal_.Refresh(&session_, request, UnixMicros());
     PublishState();
-    tiles_.RequestKeyframe(request);
-    frame_due_ = true;  // the keyframe goes out now, not at the next frame time
+    keyframe_request_ = request;  // the latest, if several
+    frame_due_ = true;            // the keyframe goes out now, not at the next frame time
   }
   if (intake_.TakeParamsChanged() || std::exchange(integrator_replaced_, false) || refresh) PublishParams();
   if (intake_.TakeTimelineChanged() || refresh) PublishTimeline();
@@ -119,40 +126,44 @@ void Server::PublishDue(double now) {
 }
 
 void Server::PublishState() {
-  const double start = MonotonicSeconds();
+  const double start = options_.clock();
   state_t state = MakeStateMessage(session_, UnixMicros());
   state.server_id = presence_.id();
   bus_.Publish(channels_.state, state);
-  stats_.publish_seconds += MonotonicSeconds() - start;
+  stats_.publish_seconds += options_.clock() - start;
   ++stats_.states_published;
 }
 
-// state => frame => changed tiles => paced publisher (tiles, then the manifest)
+// state => a copy => the frame stage. Skipped while the last frame is still in the stage or
+// being sent, unless it answers a REFRESH: then it waits for them and goes next.
 void Server::FrameDue() {
   if (!frame_due_) return;  // due by the frame rate, or asked for by REFRESH (even at frame_rate 0)
-  frame_due_ = false;
   // Asleep, with nothing changed since a frame drawn asleep, a new frame would be the same.
   const bool asleep = session_.simulation().sleeping();
-  if (asleep && drawn_asleep_ && drawn_revision_ == session_.revision() && !tiles_.keyframe_requested())
-    return;
-  if (paced_.queued() > 0) {  // still sending the last frame: skip this one
-    ++stats_.frames_skipped;
+  const bool keyframe = keyframe_request_ >= 0;
+  if (asleep && drawn_asleep_ && drawn_revision_ == session_.revision() && !keyframe) {
+    frame_due_ = false;
     return;
   }
-  const int threads = session_.scene().sim.threads;
-  const double start = MonotonicSeconds();
-  const render::Framebuffer& image = session_.RenderFrame(threads);
+  if (frames_.Busy() || paced_.queued() > 0) {
+    if (!keyframe) {
+      frame_due_ = false;
+      ++stats_.frames_skipped;
+    }
+    return;
+  }
+  frame_due_ = false;
+  frames_.Submit(FrameInput::Of(session_, UnixMicros()), session_.scene().sim.threads,
+                 std::exchange(keyframe_request_, -1));
+  ++stats_.frames_published;
   drawn_asleep_ = asleep;
   drawn_revision_ = session_.revision();
-  const double rendered = MonotonicSeconds();
-  const EncodedFrame frame = tiles_.Encode(image, MakeFrameInfo(session_, UnixMicros()), threads);
+}
+
+// On the stage's thread: tiles, then the manifest, to the paced publisher.
+void Server::PublishFrame(const EncodedFrame& frame) {
   for (const tile_t& tile : frame.tiles) paced_.Enqueue(channels_.tile, tile);
   paced_.Enqueue(channels_.frame, frame.manifest);
-  stats_.render_seconds += rendered - start;
-  stats_.encode_seconds += MonotonicSeconds() - rendered;
-  ++stats_.frames_published;
-  stats_.tiles_published += frame.tiles.size();
-  stats_.tile_bytes += double(frame.encoded_bytes);
 }
 
 void Server::PublishParams() {
@@ -170,6 +181,11 @@ void Server::PublishStatus(double now) {
   window.sim_seconds = session_.simulation().state().time - window_sim_start_;
   window.bytes = double(bus_.bytes_published() - window_bytes_start_);
   window.uptime = now - start_wall_;
+  const FrameStageStats drawn = frames_.TakeStats();
+  stats_.render_seconds += drawn.render_seconds;
+  stats_.encode_seconds += drawn.encode_seconds;
+  stats_.tiles_published += drawn.tiles;
+  stats_.tile_bytes += drawn.tile_bytes;
   status_t status = MakeStatusMessage(session_, stats_, window, UnixMicros());
   status.server_id = presence_.id();
   status.other_servers = presence_.others();

@@ -1,24 +1,32 @@
-// flagd's main loop. Single-threaded around the bus (workers only inside a step):
+// flagd's main loop, a pipeline of three threads over one worker pool:
 //
 //   loop:  commands      bus.Handle: decode, validate, apply, ACK (between steps)
-//          step          real time: as many dt steps as wall time allows (an accumulator);
+//          step          real time: as many dt steps as the clock allows (an accumulator);
 //                        --fast: steps back to back
 //          publish       STATE every 1/state_rate of simulated time, and at once on REFRESH;
 //                        PARAMS and TIMELINE each second and after a change; STATUS each second
-//          frame         every 1/frame_rate of simulated time: draw, pick and compress the
-//                        changed tiles, hand them to the paced publisher's thread; a frame due
-//                        while the last is still being sent is skipped, never queued
+//          frame         every 1/frame_rate of simulated time: a copy of what the frame shows
+//                        goes to the frame stage, and the loop steps on
 //          wait          on the bus until the next step or publication is due
+//   frame stage          draws the copy, picks and compresses the changed tiles (frame_stage.hpp)
+//   paced publisher      sends them no faster than the receivers keep up (paced_publisher.hpp)
+//
+// A frame due while the last is still in the stage or being sent is skipped, never queued; a
+// keyframe asked for by REFRESH waits for the stage instead, and goes next.
+//
+// The loop reads time from an injected clock: tests drive it with a simulated one.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
 #include "bus.hpp"
 #include "channels.hpp"
 #include "command_intake.hpp"
+#include "frame_stage.hpp"
 #include "inputs_log.hpp"
 #include "journal.hpp"
 #include "paced_publisher.hpp"
@@ -27,7 +35,7 @@
 #include "server_stats.hpp"
 #include "session.hpp"
 #include "sim_cadence.hpp"
-#include "tile_stream.hpp"
+#include "utime.hpp"
 
 namespace flagsim {
 
@@ -35,6 +43,7 @@ struct ServerOptions {
   bool fast = false;       ///< step as fast as possible instead of in real time
   double duration = 0;     ///< s of simulated time to run, 0 = until stopped
   std::string inputs_log;  ///< if set, the journal also goes into this LCM log (inputs_log.hpp)
+  std::function<double()> clock = MonotonicSeconds;  ///< s, monotonic: the loop's time
 };
 
 class Server {
@@ -46,9 +55,13 @@ class Server {
   /// closes the inputs log), the last STATE and STATUS.
   void Run(const std::atomic<bool>& stop);
 
-  /// One pass of the loop at wall time `now` (s, monotonic): handle waiting commands, step what
-  /// is due, publish what is due. Returns seconds until something is due next.
+  /// One pass of the loop at `now` (s, on the clock): handle waiting commands, step what is due,
+  /// publish what is due, hand a frame to the stage if one is due. Returns seconds until
+  /// something is due next.
   double Tick(double now);
+
+  /// Waits until the frame stage has sent the frame in hand to the paced publisher.
+  void DrainFrames() { frames_.Drain(); }
 
   const Session& session() const { return session_; }
   const ServerStats& stats() const { return stats_; }
@@ -65,6 +78,7 @@ class Server {
   void PublishTimeline();
   void PublishStatus(double now);
   void FrameDue();
+  void PublishFrame(const EncodedFrame& frame);
 
   Bus& bus_;
   const Channels& channels_;
@@ -75,8 +89,8 @@ class Server {
   std::unique_ptr<InputsLog> inputs_;  ///< null unless recording its inputs
   Journal journal_;
   CommandIntake intake_;
-  TileStream tiles_;
   PacedPublisher paced_;
+  FrameStage frames_;  ///< after paced_: it publishes through it, so it must stop first
 
   double start_wall_ = -1;  ///< s, monotonic, first Tick
   double accumulator_ = 0;  ///< s of wall time owed to the simulation
@@ -84,6 +98,7 @@ class Server {
   SimCadence state_cadence_;  ///< STATE, on simulated time
   SimCadence frame_cadence_;  ///< frames, on simulated time
   bool frame_due_ = false;
+  int64_t keyframe_request_ = -1;     ///< a REFRESH to answer with the next frame; -1: none
   bool integrator_replaced_ = false;  ///< by the guard: PARAMS is due
   bool drawn_asleep_ = false;         ///< the last frame was drawn with the flag asleep
   int64_t drawn_revision_ = -1;       ///< the session's revision when it was drawn

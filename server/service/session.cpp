@@ -118,17 +118,12 @@ FlagSimulation StartingSimulation(const Scene& scene) {
 }  // namespace
 
 Session::Session(const Scene& scene)
-    : initial_(scene),
-      scene_(AtTimelineStart(scene)),
-      simulation_(StartingSimulation(scene_)),
-      render_scene_(render::DefaultRenderScene(float(scene.sim.pole_height), float(scene.sim.pole_radius))) {}
+    : initial_(scene), scene_(AtTimelineStart(scene)), simulation_(StartingSimulation(scene_)) {}
 
 Session::Session(const SessionSnapshot& snapshot)
     : initial_(snapshot.initial),
       scene_(snapshot.scene),
       simulation_(snapshot.simulation),
-      render_scene_(render::DefaultRenderScene(float(snapshot.scene.sim.pole_height),
-                                               float(snapshot.scene.sim.pole_radius))),
       substeps_segment_(snapshot.timeline_segment),
       substeps_fixed_(snapshot.substeps_fixed) {}
 
@@ -164,9 +159,6 @@ std::string Session::ApplyParams(const ParamChange& change) {
   }
   if (!problems.empty()) return problems;
 
-  if (next.sim.pole_height != scene_.sim.pole_height || next.sim.pole_radius != scene_.sim.pole_radius) {
-    render_scene_ = render::DefaultRenderScene(float(next.sim.pole_height), float(next.sim.pole_radius));
-  }
   scene_ = next;
   simulation_.SetParams(scene_.sim);
   substeps_segment_ = kNoSegment;  // SetParams chose substeps for the settings as they are
@@ -247,19 +239,6 @@ std::string Session::ApplyCamera(const render::CameraMove& move) {
   const std::string problem = render::ApplyCameraMove(move, &scene_.camera);
   if (problem.empty()) ++revision_;
   return problem;
-}
-
-// state => flag mesh => frame
-const render::Framebuffer& Session::RenderFrame(int threads) {
-  const auto& state = simulation_.state();
-  const auto& model = simulation_.model();
-  render::UpdateFlagMesh(model.cols, model.rows, state.x.data(), state.y.data(), state.z.data(),
-                         &render_scene_.meshes[0]);
-  render::RenderOptions options;
-  options.mode = scene_.service.shading;
-  options.threads = threads;
-  renderer_.Render(render_scene_, scene_.camera, options, &framebuffer_);
-  return framebuffer_;
 }
 
 }  // namespace flagsim

@@ -1,5 +1,6 @@
 // The running session: the scene as it stands now (parameters, wind, camera, timeline), the
-// scene it started from, the simulation, and the renderer that draws it. Commands arrive here
+// scene it started from, and the simulation. Pictures of it are drawn elsewhere, from a copy
+// (frame_painter.hpp). Commands arrive here
 // already decoded; each is validated whole before it touches anything, so a rejected command
 // leaves the session exactly as it was. No LCM here: the transport side is command_intake.hpp.
 //
@@ -19,7 +20,6 @@
 #include <vector>
 
 #include "render/camera_moves.hpp"
-#include "render/renderer.hpp"
 #include "scene.hpp"
 #include "sim/simulation.hpp"
 
@@ -82,10 +82,6 @@ class Session {
   /// true then.
   bool Step();
 
-  /// Draws the flag as it is now with the session's camera and shading, on `threads` threads.
-  const render::Framebuffer& RenderFrame(int threads);
-  const render::Framebuffer& frame() const { return framebuffer_; }
-
   /// Counts accepted changes to what a frame shows (wind, parameters, camera, the camera moved
   /// by the timeline).
   int64_t revision() const { return revision_; }
@@ -105,9 +101,6 @@ class Session {
   Scene initial_;
   Scene scene_;
   FlagSimulation simulation_;
-  render::RenderScene render_scene_;
-  render::Renderer renderer_;
-  render::Framebuffer framebuffer_;
   int64_t revision_ = 0;
   int substeps_segment_ = kNoSegment;  ///< the timeline segment the substeps were fixed for
   bool substeps_fixed_ = false;        ///< by the timeline, not by the simulation's own choice

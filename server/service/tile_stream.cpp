@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <memory>
 
+#include "parallel/worker_pool.hpp"
+
 namespace flagsim {
 namespace {
 
@@ -106,12 +108,10 @@ void TileStream::Resize(int width, int height) {
 std::vector<uint64_t> TileStream::HashTiles(const render::Framebuffer& image, int threads) const {
   const int tiles = tiles_x_ * tiles_y_;
   std::vector<uint64_t> hashes(tiles);
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    std::vector<uint8_t> scratch;
-#pragma omp for schedule(static)
-    for (int t = 0; t < tiles; ++t) hashes[t] = TileHash(image, TileRect(t), &scratch);
-  }
+  std::vector<std::vector<uint8_t>> scratch(std::max(1, threads));  // one per thread
+  ParallelForEachParticipant(tiles, threads, [&](int t, int participant) {
+    hashes[t] = TileHash(image, TileRect(t), &scratch[participant]);
+  });
   return hashes;
 }
 
@@ -138,25 +138,23 @@ std::vector<tile_t> TileStream::Compress(const render::Framebuffer& image, const
                                          const std::vector<uint64_t>& hashes, int threads) const {
   std::vector<tile_t> tiles(chosen.size());
   const int count = static_cast<int>(chosen.size());
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const std::unique_ptr<ZSTD_CCtx, ZstdContextDeleter> context(ZSTD_createCCtx());
-#pragma omp for schedule(dynamic)
-    for (int i = 0; i < count; ++i) {
-      const int t = chosen[i];
-      const TileBox box = TileRect(t);
-      tile_t& tile = tiles[i];
-      tile = EncodeTile(TilePixels(image, box.x, box.y, box.width, box.height), context.get());
-      tile.utime = info.utime;
-      tile.frame_id = next_frame_id_;
-      tile.tile_index = t;
-      tile.x = static_cast<int16_t>(box.x);
-      tile.y = static_cast<int16_t>(box.y);
-      tile.width = static_cast<int16_t>(box.width);
-      tile.height = static_cast<int16_t>(box.height);
-      tile.pixel_hash = static_cast<int64_t>(hashes[t]);
-    }
-  }
+  std::vector<std::unique_ptr<ZSTD_CCtx, ZstdContextDeleter>> contexts(std::max(1, threads));
+  ParallelForEachParticipant(count, threads, [&](int i, int participant) {
+    auto& context = contexts[participant];
+    if (!context) context.reset(ZSTD_createCCtx());
+    const int t = chosen[i];
+    const TileBox box = TileRect(t);
+    tile_t& tile = tiles[i];
+    tile = EncodeTile(TilePixels(image, box.x, box.y, box.width, box.height), context.get());
+    tile.utime = info.utime;
+    tile.frame_id = next_frame_id_;
+    tile.tile_index = t;
+    tile.x = static_cast<int16_t>(box.x);
+    tile.y = static_cast<int16_t>(box.y);
+    tile.width = static_cast<int16_t>(box.width);
+    tile.height = static_cast<int16_t>(box.height);
+    tile.pixel_hash = static_cast<int64_t>(hashes[t]);
+  });
   return tiles;
 }
 

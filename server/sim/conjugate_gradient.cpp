@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallel/worker_pool.hpp"
+
 namespace flagsim::sim {
 namespace {
 
@@ -62,62 +64,53 @@ SolveReport ConjugateGradient<Real>::Solve(const SpringJacobian<Real>& system, c
   for (std::vector<Real>* sums : {&row_bb_, &row_rz_, &row_rr_, &row_pq_}) sums->resize(rows);
   const Real tolerance_squared = Real(tolerance * tolerance);
   SolveReport report;
-  // Every thread computes the same sums from the same row sums, so all take the same branches.
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-#pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) {  // r = b - A x, z = P^-1 r, p = z
+  // Rows in parallel; the sums of the row sums in order on this thread, so they are the same at
+  // any thread count.
+  ParallelFor(rows, threads, [&](int r) {  // r = b - A x, z = P^-1 r, p = z
+    const int begin = r * cols, end = begin + cols;
+    system.Multiply(*x, r, &product_);
+    for (int i = begin; i < end; ++i) {
+      residual_.x[i] = b.x[i] - product_.x[i];
+      residual_.y[i] = b.y[i] - product_.y[i];
+      residual_.z[i] = b.z[i] - product_.z[i];
+    }
+    system.Precondition(residual_, r, &preconditioned_);
+    Copy(preconditioned_, &direction_, begin, end);
+    row_bb_[r] = Dot(b, b, begin, end);
+    row_rz_[r] = Dot(residual_, preconditioned_, begin, end);
+    row_rr_[r] = Dot(residual_, residual_, begin, end);
+  });
+  const Real bb = SumInOrder(row_bb_);
+  Real rz = SumInOrder(row_rz_), rr = SumInOrder(row_rr_);
+  if (bb == Real(0)) {
+    ParallelFor(rows, threads, [&](int r) { Copy(b, x, r * cols, (r + 1) * cols); });  // b = 0, so x = 0
+    rr = 0;
+  }
+  int iterations = 0;
+  for (; rr > tolerance_squared * bb && iterations < max_iterations; ++iterations) {
+    ParallelFor(rows, threads, [&](int r) {  // q = A p
+      system.Multiply(direction_, r, &product_);
+      row_pq_[r] = Dot(direction_, product_, r * cols, (r + 1) * cols);
+    });
+    const Real alpha = rz / SumInOrder(row_pq_);
+    ParallelFor(rows, threads, [&](int r) {  // x += alpha p, r -= alpha q, z = P^-1 r
       const int begin = r * cols, end = begin + cols;
-      system.Multiply(*x, r, &product_);
-      for (int i = begin; i < end; ++i) {
-        residual_.x[i] = b.x[i] - product_.x[i];
-        residual_.y[i] = b.y[i] - product_.y[i];
-        residual_.z[i] = b.z[i] - product_.z[i];
-      }
+      Combine(alpha, direction_, Real(1), x, begin, end);
+      Combine(-alpha, product_, Real(1), &residual_, begin, end);
       system.Precondition(residual_, r, &preconditioned_);
-      Copy(preconditioned_, &direction_, begin, end);
-      row_bb_[r] = Dot(b, b, begin, end);
       row_rz_[r] = Dot(residual_, preconditioned_, begin, end);
       row_rr_[r] = Dot(residual_, residual_, begin, end);
-    }
-    const Real bb = SumInOrder(row_bb_);
-    Real rz = SumInOrder(row_rz_), rr = SumInOrder(row_rr_);
-    if (bb == Real(0)) {
-#pragma omp for schedule(static)
-      for (int r = 0; r < rows; ++r) Copy(b, x, r * cols, (r + 1) * cols);  // b = 0, so x = 0
-      rr = 0;
-    }
-    int iterations = 0;
-    for (; rr > tolerance_squared * bb && iterations < max_iterations; ++iterations) {
-#pragma omp for schedule(static)
-      for (int r = 0; r < rows; ++r) {  // q = A p
-        system.Multiply(direction_, r, &product_);
-        row_pq_[r] = Dot(direction_, product_, r * cols, (r + 1) * cols);
-      }
-      const Real alpha = rz / SumInOrder(row_pq_);
-#pragma omp for schedule(static)
-      for (int r = 0; r < rows; ++r) {  // x += alpha p, r -= alpha q, z = P^-1 r
-        const int begin = r * cols, end = begin + cols;
-        Combine(alpha, direction_, Real(1), x, begin, end);
-        Combine(-alpha, product_, Real(1), &residual_, begin, end);
-        system.Precondition(residual_, r, &preconditioned_);
-        row_rz_[r] = Dot(residual_, preconditioned_, begin, end);
-        row_rr_[r] = Dot(residual_, residual_, begin, end);
-      }
-      const Real rz_next = SumInOrder(row_rz_);
-      const Real beta = rz_next / rz;
-      rz = rz_next;
-      rr = SumInOrder(row_rr_);
-#pragma omp for schedule(static)
-      for (int r = 0; r < rows; ++r)
-        Combine(Real(1), preconditioned_, beta, &direction_, r * cols, (r + 1) * cols);
-    }
-#pragma omp single
-    {
-      report.iterations = iterations;
-      report.relative_residual = bb > 0 ? std::sqrt(double(rr) / double(bb)) : 0.0;
-    }
+    });
+    const Real rz_next = SumInOrder(row_rz_);
+    const Real beta = rz_next / rz;
+    rz = rz_next;
+    rr = SumInOrder(row_rr_);
+    ParallelFor(rows, threads, [&](int r) {
+      Combine(Real(1), preconditioned_, beta, &direction_, r * cols, (r + 1) * cols);
+    });
   }
+  report.iterations = iterations;
+  report.relative_residual = bb > 0 ? std::sqrt(double(rr) / double(bb)) : 0.0;
   return report;
 }
 

@@ -1,11 +1,11 @@
 #include "forces.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
+
+#include "parallel/worker_pool.hpp"
 
 namespace flagsim::sim {
 namespace {
@@ -88,11 +88,6 @@ int Padding(int cols) { return 2 * cols + 2; }
 template <typename Real>
 void ZeroColumns(NodeForces<Real>* f, int start, int first, int end) {
   for (int c = first; c < end; ++c) f->x[start + c] = f->y[start + c] = f->z[start + c] = Real(0);
-}
-
-/// Rows [begin, end) of thread `thread` of `threads`: contiguous, as even as can be.
-RowBand ThreadBand(int rows, int thread, int threads) {
-  return {rows * thread / threads, rows * (thread + 1) / threads};
 }
 
 template <typename Real>
@@ -295,19 +290,21 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
   forces->x.resize(model.num_nodes());
   forces->y.resize(model.num_nodes());
   forces->z.resize(model.num_nodes());
-  // One fork per evaluation: each thread computes the springs and faces of its band of rows, a
-  // barrier, then the band gathers, then after_row runs on each of its rows.
-#pragma omp parallel num_threads(params.threads) if (params.threads > 1)
-  {
-    const RowBand band = ThreadBand(model.rows, omp_get_thread_num(), omp_get_num_threads());
+  // The springs and faces of every band of rows; then each band gathers, and after_row runs on
+  // each of its rows. A band writes only its own rows' slots, so the bands may run in any order.
+  const int bands = BandCount(model.rows, params.threads);
+  ParallelFor(bands, params.threads, [&](int b) {
+    const RowBand band = BandOf(model.rows, b, bands);
     if (Includes(terms, ForceTerms::kSprings)) SpringBand(model, state, band);
     if (Includes(terms, ForceTerms::kWind)) WindBand(model, params, state, band);
-#pragma omp barrier
+  });
+  ParallelFor(bands, params.threads, [&](int b) {
+    const RowBand band = BandOf(model.rows, b, bands);
     GatherBand(model, params, state, band, terms, forces);
     if (after_row) {
       for (int r = band.begin; r < band.end; ++r) after_row(r);
     }
-  }
+  });
 }
 
 template class ForceEvaluator<float>;

@@ -9,6 +9,7 @@
 // for bit whatever the number of threads.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -25,10 +26,19 @@ struct NodeForces {
   std::vector<Real> x, y, z;
 };
 
-/// Grid rows [begin, end): one thread's share of an evaluation.
+/// Grid rows [begin, end): one share of an evaluation.
 struct RowBand {
   int begin = 0, end = 0;
 };
+
+/// Band `band` of `bands`: contiguous rows, as even as can be.
+inline RowBand BandOf(int rows, int band, int bands) {
+  return {rows * band / bands, rows * (band + 1) / bands};
+}
+
+/// Bands to share `rows` among `threads`: one alone; else a few per thread, so a thread that loses
+/// its core holds back a small share, while each band's runs stay long for the vector unit.
+inline int BandCount(int rows, int threads) { return threads <= 1 ? 1 : std::min(rows, 4 * threads); }
 
 /// m: the shortest spring length divided by. A shorter spring has no direction: its force,
 /// Jacobian block and projection target are taken as zero, and 1 / kShortestSpring^2 stays

@@ -10,6 +10,7 @@
 
 #include "conjugate_gradient.hpp"
 #include "integrator.hpp"
+#include "parallel/worker_pool.hpp"
 #include "spring_jacobian.hpp"
 
 namespace flagsim::sim {
@@ -32,8 +33,7 @@ class ImplicitEuler : public Integrator<Real> {
     solver_.Solve(jacobian_, rhs_, params.solver_tolerance, kMaxIterations, params.threads, &dv_);
     const Real step = Real(h);
     const int rows = model.rows, cols = model.cols;
-#pragma omp parallel for schedule(static) num_threads(params.threads) if (params.threads > 1)
-    for (int r = 0; r < rows; ++r) {
+    ParallelFor(rows, params.threads, [&](int r) {
       for (int i = r * cols; i < (r + 1) * cols; ++i) {
         state->vx[i] += dv_.x[i];
         state->vy[i] += dv_.y[i];
@@ -42,7 +42,7 @@ class ImplicitEuler : public Integrator<Real> {
         state->y[i] += step * state->vy[i];
         state->z[i] += step * state->vz[i];
       }
-    }
+    });
     state->time += h;
   }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cloth_state.hpp"
+#include "parallel/worker_pool.hpp"
 
 namespace flagsim::sim {
 
@@ -56,8 +57,7 @@ auto Arrays(const Vectors& vectors) -> NodeArrays<const typename decltype(vector
 /// Runs body(NodeRange) on every grid row, the rows shared among `threads` threads.
 template <typename Body>
 void ForEachRow(int rows, int cols, int threads, const Body& body) {
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (int r = 0; r < rows; ++r) body(NodeRange{r * cols, (r + 1) * cols});
+  ParallelFor(rows, threads, [&](int r) { body(NodeRange{r * cols, (r + 1) * cols}); });
 }
 
 /// (x0, u) => x' = x0 + h u over `nodes`. `out` may be `from`.

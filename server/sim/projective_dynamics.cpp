@@ -51,6 +51,8 @@
 #include <limits>
 
 #include "integrator.hpp"
+#include "node_update.hpp"
+#include "parallel/worker_pool.hpp"
 #include "spring_laplacian.hpp"
 #include "spring_runs.hpp"
 
@@ -155,20 +157,14 @@ class ProjectiveDynamics : public Integrator<Real> {
     const int rows = model.rows;
     targets_.resize(model.families.size());
     for (NodeVectors<Real>& family : targets_) family.Resize(model.num_nodes());
-#pragma omp parallel num_threads(params.threads) if (params.threads > 1)
-    {
-#pragma omp for schedule(static)
-      for (int r = 0; r < rows; ++r) TransverseDampingRow(model, state, r);
-#pragma omp for schedule(static)
-      for (int r = 0; r < rows; ++r) {
-        ForEachSpringRun(model, r, [&](const SpringRun& run) {
-          const NodeVectors<Real>& t = targets_[run.family];
-          GatherKernel(t.x.data(), t.y.data(), t.z.data(), forces_.x.data(), forces_.y.data(),
-                       forces_.z.data(), run.begin, run.end, run.spring_shift,
-                       run.first ? Real(1) : Real(-1));
-        });
-      }
-    }
+    ParallelFor(rows, params.threads, [&](int r) { TransverseDampingRow(model, state, r); });
+    ParallelFor(rows, params.threads, [&](int r) {
+      ForEachSpringRun(model, r, [&](const SpringRun& run) {
+        const NodeVectors<Real>& t = targets_[run.family];
+        GatherKernel(t.x.data(), t.y.data(), t.z.data(), forces_.x.data(), forces_.y.data(), forces_.z.data(),
+                     run.begin, run.end, run.spring_shift, run.first ? Real(1) : Real(-1));
+      });
+    });
   }
 
   void TransverseDampingRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r) {
@@ -191,29 +187,25 @@ class ProjectiveDynamics : public Integrator<Real> {
     iterate_.Resize(n);
     momentum_.Resize(n);
     rhs_.Resize(n);
-#pragma omp parallel for schedule(static) num_threads(params.threads) if (params.threads > 1)
-    for (int i = 0; i < n; ++i) {
-      const Real free = model.pinned(i) ? Real(0) : Real(1);
-      momentum_.x[i] = free * (h * model.mass[i] * state.vx[i] + h * h * forces_.x[i]);
-      momentum_.y[i] = free * (h * model.mass[i] * state.vy[i] + h * h * forces_.y[i]);
-      momentum_.z[i] = free * (h * model.mass[i] * state.vz[i] + h * h * forces_.z[i]);
-      iterate_.x[i] = state.x[i] + h * state.vx[i];
-      iterate_.y[i] = state.y[i] + h * state.vy[i];
-      iterate_.z[i] = state.z[i] + h * state.vz[i];
-    }
+    ForEachRow(model.rows, model.cols, params.threads, [&](NodeRange row) {
+      for (int i = row.begin; i < row.end; ++i) {
+        const Real free = model.pinned(i) ? Real(0) : Real(1);
+        momentum_.x[i] = free * (h * model.mass[i] * state.vx[i] + h * h * forces_.x[i]);
+        momentum_.y[i] = free * (h * model.mass[i] * state.vy[i] + h * h * forces_.y[i]);
+        momentum_.z[i] = free * (h * model.mass[i] * state.vz[i] + h * h * forces_.z[i]);
+        iterate_.x[i] = state.x[i] + h * state.vx[i];
+        iterate_.y[i] = state.y[i] + h * state.vy[i];
+        iterate_.z[i] = state.z[i] + h * state.vz[i];
+      }
+    });
   }
 
   /// Local step (every spring's t at the iterate), then each row gathers h M v + h^2 f_ext + h^2 J t.
   void RightHandSide(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
                      Real h) {
     const int rows = model.rows;
-#pragma omp parallel num_threads(params.threads) if (params.threads > 1)
-    {
-#pragma omp for schedule(static)
-      for (int r = 0; r < rows; ++r) TargetRow(model, state, r);
-#pragma omp for schedule(static)
-      for (int r = 0; r < rows; ++r) GatherRow(model, h, r);
-    }
+    ParallelFor(rows, params.threads, [&](int r) { TargetRow(model, state, r); });
+    ParallelFor(rows, params.threads, [&](int r) { GatherRow(model, h, r); });
   }
 
   void TargetRow(const ClothModel<Real>& model, const ClothState<Real>& state, int r) {
@@ -249,29 +241,29 @@ class ProjectiveDynamics : public Integrator<Real> {
 
   /// The next iterate, x + dx, at free nodes.
   void MoveIterate(const ClothModel<Real>& model, const ClothState<Real>& state, int threads) {
-    const int n = model.num_nodes();
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (int i = 0; i < n; ++i) {
-      if (model.pinned(i)) continue;
-      iterate_.x[i] = state.x[i] + displacement_.x[i];
-      iterate_.y[i] = state.y[i] + displacement_.y[i];
-      iterate_.z[i] = state.z[i] + displacement_.z[i];
-    }
+    ForEachRow(model.rows, model.cols, threads, [&](NodeRange row) {
+      for (int i = row.begin; i < row.end; ++i) {
+        if (model.pinned(i)) continue;
+        iterate_.x[i] = state.x[i] + displacement_.x[i];
+        iterate_.y[i] = state.y[i] + displacement_.y[i];
+        iterate_.z[i] = state.z[i] + displacement_.z[i];
+      }
+    });
   }
 
   /// x' = x + dx, v' = dx / h at free nodes.
   void Finish(const ClothModel<Real>& model, Real h, int threads, ClothState<Real>* state) const {
-    const int n = model.num_nodes();
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (int i = 0; i < n; ++i) {
-      if (model.pinned(i)) continue;
-      state->x[i] += displacement_.x[i];
-      state->y[i] += displacement_.y[i];
-      state->z[i] += displacement_.z[i];
-      state->vx[i] = displacement_.x[i] / h;
-      state->vy[i] = displacement_.y[i] / h;
-      state->vz[i] = displacement_.z[i] / h;
-    }
+    ForEachRow(model.rows, model.cols, threads, [&](NodeRange row) {
+      for (int i = row.begin; i < row.end; ++i) {
+        if (model.pinned(i)) continue;
+        state->x[i] += displacement_.x[i];
+        state->y[i] += displacement_.y[i];
+        state->z[i] += displacement_.z[i];
+        state->vx[i] = displacement_.x[i] / h;
+        state->vy[i] = displacement_.y[i] / h;
+        state->vz[i] = displacement_.z[i] / h;
+      }
+    });
   }
 
   SpringLaplacian<Real> laplacian_;

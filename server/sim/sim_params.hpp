@@ -71,6 +71,11 @@ struct SimParams {
   int solver_iterations = 10;      ///< XPBD and local/global iterations per step
   double solver_tolerance = 1e-3;  ///< implicit Euler: CG stops at this relative residual
   int threads = 1;                 ///< worker threads for forces and integration
+  /// Nodes a thread must have for a step to be shared among threads: a loop handed to a second
+  /// thread costs a few microseconds (about 3 on the 2-core machine of docs/benchmarks.md), which
+  /// a smaller share does not earn back, so a smaller flag steps on one thread whatever `threads`
+  /// says. Results are the same either way; tests lower it to run small flags on many threads.
+  int min_nodes_per_thread = 4096;
 };
 
 }  // namespace flagsim::sim

@@ -228,7 +228,9 @@ template <typename Real>
 std::string Simulation<Real>::Advance(double* fastest) {
   const int n = substeps();
   const double start = state_.time, h = params_.dt / n;
-  const StepContext<Real> context{model_, params_, wind_, evaluator_};
+  SimParams params = params_;
+  params.threads = StepThreads(model_.num_nodes(), params_);
+  const StepContext<Real> context{model_, params, wind_, evaluator_};
   const Obstacles obstacles = Obstacles::Of(params_);
   const int passes = params_.self_collision ? CollisionPasses(n) : 1;
   collision_stats_ = {};

@@ -22,6 +22,7 @@
 //                sleeps and wakes at the same steps.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -67,6 +68,11 @@ inline constexpr int kMaxSubsteps = 4096;
 /// accepts at most. Above kMaxSubsteps on purpose: a flag past that limit gets its need computed
 /// as it is, so that the check against kMaxSubsteps reports it rather than a clamped value.
 inline constexpr int kMaxComputedSubsteps = 1 << 16;
+
+/// The threads a step of a `nodes`-node flag uses (SimParams::min_nodes_per_thread).
+inline int StepThreads(int nodes, const SimParams& params) {
+  return std::max(1, std::min(params.threads, nodes / std::max(1, params.min_nodes_per_thread)));
+}
 
 /// Self-collision passes come after every this much of the shortest grid spacing that the
 /// fastest node travels (Simulation::CollisionPasses).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallel/worker_pool.hpp"
 #include "spring_runs.hpp"
 
 namespace flagsim::sim {
@@ -113,23 +114,18 @@ void SpringJacobian<Real>::Assemble(const ClothModel<Real>& model, const ClothSt
   rhs->Resize(model.num_nodes());
   const Real mass_scale = Real(1 + h * friction);
   const int rows = model.rows, cols = model.cols;
-  // One fork: the blocks of springs starting in each row, a barrier, then each row gathers.
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-#pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) {
-      for (int i = r * cols; i < (r + 1) * cols; ++i) {
-        scaled_mass_[i] = mass_scale * model.mass[i];
-        free_[i] = model.pinned(i) ? Real(0) : Real(1);
-      }
-      BlockRow(state, Real(h), r);
+  // The blocks of springs starting in each row; then each row gathers.
+  ParallelFor(rows, threads, [&](int r) {
+    for (int i = r * cols; i < (r + 1) * cols; ++i) {
+      scaled_mass_[i] = mass_scale * model.mass[i];
+      free_[i] = model.pinned(i) ? Real(0) : Real(1);
     }
-#pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) {
-      InverseDiagonalRow(r);
-      RightHandSideRow(state, forces, Real(h), r, rhs);
-    }
-  }
+    BlockRow(state, Real(h), r);
+  });
+  ParallelFor(rows, threads, [&](int r) {
+    InverseDiagonalRow(r);
+    RightHandSideRow(state, forces, Real(h), r, rhs);
+  });
 }
 
 template <typename Real>

@@ -1,5 +1,7 @@
 #include "spring_laplacian.hpp"
 
+#include "parallel/worker_pool.hpp"
+
 namespace flagsim::sim {
 namespace {
 
@@ -71,10 +73,9 @@ void SpringLaplacian<Real>::Solve(const NodeVectors<Real>& b, int threads, NodeV
   x->Resize(n);
   const std::vector<Real>* from[3] = {&b.x, &b.y, &b.z};
   std::vector<Real>* to[3] = {&x->x, &x->y, &x->z};
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (int k = 0; k < 3; ++k) {
+  ParallelFor(3, threads, [&](int k) {
     Eigen::Map<Vector>(to[k]->data(), n) = factorisation_.solve(Eigen::Map<const Vector>(from[k]->data(), n));
-  }
+  });
 }
 
 template class SpringLaplacian<float>;

@@ -61,15 +61,12 @@ class Xpbd : public Integrator<Real> {
   }
 
   void Solve(const ClothModel<Real>& model, const SimParams& params, Real h, const ClothState<Real>& start) {
-    const int threads = params.threads;
-#pragma omp parallel num_threads(threads) if (threads > 1)
     for (int iteration = 0; iteration < params.solver_iterations; ++iteration) {
       for (size_t f = 0; f < model.families.size(); ++f) {
         for (int colour = 0; colour < 2; ++colour) {
-#pragma omp for schedule(static)
-          for (int r = 0; r < model.rows - model.families[f].dr; ++r) {
+          ParallelFor(model.rows - model.families[f].dr, params.threads, [&](int r) {
             SolveRow(model, model.families[f], lambda_[f].data(), r, colour, h, start);
-          }
+          });
         }
       }
     }

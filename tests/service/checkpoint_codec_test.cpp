@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "checked_decode.hpp"
+#include "frame_painter.hpp"
 #include "publisher.hpp"
 
 namespace flagsim {
@@ -83,7 +84,9 @@ TEST(CheckpointCodec, AResumedSessionStepsAndDrawsAsTheOriginal) {
   EXPECT_EQ(resumed.simulation().state().step, original.simulation().state().step);
   EXPECT_EQ(resumed.scene().timeline, original.scene().timeline);
   EXPECT_EQ(resumed.scene().sim.forces.stiffness, original.scene().sim.forces.stiffness);
-  EXPECT_EQ(resumed.RenderFrame(1).rgb, original.RenderFrame(1).rgb);
+  FramePainter painter;
+  const std::vector<uint8_t> resumed_rgb = painter.Paint(FrameInput::Of(resumed, 0), 1).rgb;
+  EXPECT_EQ(resumed_rgb, painter.Paint(FrameInput::Of(original, 0), 1).rgb);
   // The initial scene came too: a reset goes back to the same place in both.
   EXPECT_EQ(original.ApplyParams({true, {}}), "");
   EXPECT_EQ(resumed.ApplyParams({true, {}}), "");

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "checked_decode.hpp"
+#include "frame_painter.hpp"
 #include "messages/message_fixtures.hpp"
 #include "parameter_table.hpp"
 
@@ -91,7 +92,8 @@ TEST(MessageBuilders, FramesCarryTheCameraAsDrawn) {
   EXPECT_EQ(info.view, camera.View());
   // In the manifest, and through the wire.
   TileStream stream;
-  const frame_t manifest = stream.Encode(session.RenderFrame(1), info, 1).manifest;
+  FramePainter painter;
+  const frame_t manifest = stream.Encode(painter.Paint(FrameInput::Of(session, 5), 1), info, 1).manifest;
   const auto bytes = testing::Encode(manifest);
   std::string error;
   const auto decoded = wire::CheckedDecode<frame_t>(bytes.data(), bytes.size(), 1 << 20, &error);

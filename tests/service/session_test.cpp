@@ -244,6 +244,7 @@ TEST(Session, ParametersMustSuitTheTimelineAndResetRestoresIt) {
 uint64_t HashAfter(int threads, int steps, bool with_timeline) {
   Scene scene;
   scene.sim.threads = threads;
+  scene.sim.min_nodes_per_thread = 1;  // share even a small flag among the threads
   if (with_timeline) {
     sim::Keyframe first = Key(0, {{"stiffness", 1500}, {"damping", 0.05}}, sim::ControlLaw::kCubic);
     first.wind = sim::WindControl{{6, 0, 1.5}, 0.2};

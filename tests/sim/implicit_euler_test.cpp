@@ -121,6 +121,7 @@ TEST(ImplicitEuler, SameHashAtAnyThreadCount) {
       SimParams params = stiff ? StiffFlagAtSixtyHertz(IntegratorKind::kImplicitEuler) : SimParams{};
       params.integrator = IntegratorKind::kImplicitEuler;
       params.threads = threads;
+      params.min_nodes_per_thread = 1;  // share even a small flag among the threads
       Simulation<float> simulation(params, WindSettings{});
       for (int i = 0; i < (stiff ? 8 : 40); ++i) simulation.Step();
       if (threads == 1) reference = simulation.Hash();

@@ -123,6 +123,7 @@ TEST_P(EveryIntegrator, SameStateAtAnyThreadCount) {
     params.rows = 14;
     params.integrator = GetParam();
     params.threads = threads;
+    params.min_nodes_per_thread = 1;  // share even a small flag among the threads
     Simulation<float> simulation(params, WindSettings{{8.0, 0.0, 2.0}, 0.3, 0.0}, 7);
     for (int step = 0; step < 40; ++step) simulation.Step();
     hashes[threads] = simulation.Hash();

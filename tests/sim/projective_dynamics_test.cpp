@@ -110,6 +110,7 @@ TEST(ProjectiveDynamics, SameHashAtAnyThreadCount) {
   for (int threads : {1, 2, 3}) {
     SimParams params = Projective();
     params.threads = threads;
+    params.min_nodes_per_thread = 1;  // share even a small flag among the threads
     Simulation<float> simulation(params, WindSettings{});
     for (int i = 0; i < 40; ++i) simulation.Step();
     if (threads == 1) reference = simulation.Hash();

@@ -54,7 +54,10 @@ TEST(TriangleCrossings, FindTheCrossingOfTwoTrianglesAndNothingInAFlatSheet) {
   z = {0, 0, 0, 0.5, 1, 1};
   EXPECT_EQ(CrossingTrianglePairs(triangles, x, y, z), 0);
   const ClothMesh mesh = BuildClothMesh(8, 6);
-  const ClothModel<float> model = BuildClothModel<float>(SimParams{.cols = 8, .rows = 6});
+  SimParams params;
+  params.cols = 8;
+  params.rows = 6;
+  const ClothModel<float> model = BuildClothModel<float>(params);
   EXPECT_EQ(CrossingTrianglePairs(mesh.triangles, model.rest_x, model.rest_y, model.rest_z), 0);
 }
 

@@ -93,6 +93,7 @@ TEST(Simulation, SameHashAtAnyThreadCount) {
   for (int threads : {1, 2, 3, 4}) {
     SimParams params;
     params.threads = threads;
+    params.min_nodes_per_thread = 1;  // share even a small flag among the threads
     Simulation<float> simulation(params, Breeze());
     for (int i = 0; i < 300; ++i) simulation.Step();
     if (threads == 1) reference = simulation.Hash();

@@ -1,0 +1,196 @@
+#include "parallel/worker_pool.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace flagsim {
+namespace {
+
+/// A hint to the core that this thread is waiting.
+inline void Pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#endif
+}
+
+/// Polls `done` for up to `seconds`, yielding the core every few polls so that any thread that
+/// wants it gets it; true if `done` came true.
+template <typename Done>
+bool PollFor(double seconds, const Done& done) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  for (int polls = 1;; ++polls) {
+    if (done()) return true;
+    Pause();
+    if (polls % 64 == 0) {
+      if (std::chrono::steady_clock::now() >= until) return done();
+      std::this_thread::yield();
+    }
+  }
+}
+
+}  // namespace
+
+/// One participant's share of a loop's indices, [next, end), on a cache line of its own: each
+/// thread claims from its own share without contention, then takes from the others'.
+struct alignas(64) WorkerPool::Share {
+  std::atomic<int> next{0};
+  int end = 0;
+
+  /// The next index of this share, or -1 when none is left.
+  int Claim() {
+    if (next.load(std::memory_order_relaxed) >= end) return -1;
+    const int index = next.fetch_add(1);
+    return index < end ? index : -1;
+  }
+};
+
+/// One call of Run: its indices in shares, who helps, and who is still inside.
+struct WorkerPool::Loop {
+  const Body* body = nullptr;
+  int participants = 0;        ///< threads: the caller and its helpers
+  std::atomic<int> joined{0};  ///< helpers that asked to join, including any turned away
+  std::atomic<int> inside{0};  ///< helpers running indices of this loop
+  Share shares[kMaxWorkers + 1];
+};
+
+WorkerPool& WorkerPool::Shared() {
+  static WorkerPool pool;
+  return pool;
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stopping_.store(true);
+    posted_.fetch_add(1);
+  }
+  wake_.notify_all();
+  for (std::thread& worker : workers_) worker.join();
+}
+
+// offer the loop => drain it here too => withdraw the offer => wait for the helpers inside
+void WorkerPool::Run(int count, int threads, const Body& body) {
+  const int participants = std::min({threads, count, kMaxWorkers + 1});
+  Loop loop;
+  loop.body = &body;
+  loop.participants = std::max(1, participants);
+  for (int p = 0; p < loop.participants; ++p) {  // contiguous shares, as even as can be
+    loop.shares[p].next.store(int(int64_t(count) * p / loop.participants), std::memory_order_relaxed);
+    loop.shares[p].end = int(int64_t(count) * (p + 1) / loop.participants);
+  }
+  const int slot = participants > 1 ? Offer(&loop) : -1;
+  Drain(&loop, 0);
+  if (slot < 0) return;
+  Withdraw(slot);
+  WaitForHelpers(loop);
+}
+
+// Puts the loop in a free slot and wakes sleeping workers; -1 if every slot is taken (then the
+// caller runs the loop alone).
+int WorkerPool::Offer(Loop* loop) {
+  if (worker_count_.load() < loop->participants - 1) AddWorkers(loop->participants - 1);
+  for (int slot = 0; slot < kSlots; ++slot) {
+    Loop* empty = nullptr;
+    if (!offered_[slot].compare_exchange_strong(empty, loop)) continue;
+    posted_.fetch_add(1);
+    if (sleeping_workers_.load() > 0) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      wake_.notify_all();
+    }
+    return slot;
+  }
+  return -1;
+}
+
+// After this no worker can still be about to join: one that read the slot before it was
+// cleared is counted in visitors_ until it has either entered the loop or turned away.
+void WorkerPool::Withdraw(int slot) {
+  offered_[slot].store(nullptr);
+  while (visitors_.load() != 0) Pause();
+}
+
+void WorkerPool::AddWorkers(int wanted) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  while (int(workers_.size()) < std::min(wanted, kMaxWorkers)) workers_.emplace_back([this] { Work(); });
+  worker_count_.store(int(workers_.size()));
+}
+
+// Its own share first, then what is left of the others', each from the next one round.
+void WorkerPool::Drain(Loop* loop, int participant) {
+  for (int k = 0; k < loop->participants; ++k) {
+    Share& share = loop->shares[(participant + k) % loop->participants];
+    for (int i = share.Claim(); i >= 0; i = share.Claim()) (*loop->body)(i, participant);
+  }
+}
+
+// A helper still inside runs its last index, usually for microseconds: poll, then sleep.
+void WorkerPool::WaitForHelpers(const Loop& loop) {
+  const auto out = [&loop] { return loop.inside.load() == 0; };
+  if (PollFor(kPollSeconds, out)) return;
+  std::unique_lock<std::mutex> lock(mutex_);
+  sleeping_callers_.fetch_add(1);
+  left_.wait(lock, out);
+  sleeping_callers_.fetch_sub(1);
+}
+
+// A worker: join an offered loop, drain it, leave; poll for the next offer a while (a substep's
+// stages follow each other within microseconds), then sleep until one comes.
+void WorkerPool::Work() {
+  while (!stopping_.load()) {
+    int participant = 0;
+    Loop* loop = nullptr;
+    const auto joined = [&] { return (loop = TryJoin(&participant)) != nullptr || stopping_.load(); };
+    if (!PollFor(kPollSeconds, joined)) Sleep(joined);
+    if (loop == nullptr) continue;
+    Drain(loop, participant);
+    Leave(loop);
+  }
+}
+
+// An offered loop with room for a helper, entered; null if none. visitors_ covers the moment
+// between reading a slot and entering its loop (see Withdraw).
+WorkerPool::Loop* WorkerPool::TryJoin(int* participant) {
+  bool any = false;  // a plain look first: polling must not disturb the callers' cache lines
+  for (int slot = 0; slot < kSlots; ++slot) any |= offered_[slot].load(std::memory_order_relaxed) != nullptr;
+  if (!any) return nullptr;
+  Loop* entered = nullptr;
+  visitors_.fetch_add(1);
+  for (int slot = 0; slot < kSlots && entered == nullptr; ++slot) {
+    Loop* loop = offered_[slot].load();
+    if (loop == nullptr) continue;
+    const int helper = loop->joined.fetch_add(1) + 1;
+    if (helper >= loop->participants) continue;  // full
+    loop->inside.fetch_add(1);
+    *participant = helper;
+    entered = loop;
+  }
+  visitors_.fetch_sub(1);
+  return entered;
+}
+
+// Sleeps until a loop is offered (`joined` true) or the pool stops.
+template <typename Joined>
+void WorkerPool::Sleep(const Joined& joined) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  sleeping_workers_.fetch_add(1);  // before looking: Offer sees it, or we see the offer
+  while (!joined()) {
+    const unsigned seen = posted_.load();
+    if (joined()) break;
+    wake_.wait(lock, [&] { return posted_.load() != seen; });
+  }
+  sleeping_workers_.fetch_sub(1);
+}
+
+// The loop may be gone the moment `inside` reaches 0: touch only the pool after that.
+void WorkerPool::Leave(Loop* loop) {
+  if (loop->inside.fetch_sub(1) != 1) return;
+  if (sleeping_callers_.load() == 0) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  left_.notify_all();
+}
+
+}  // namespace flagsim

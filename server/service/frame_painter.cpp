@@ -1,0 +1,40 @@
+#include "frame_painter.hpp"
+
+#include "message_builders.hpp"
+
+namespace flagsim {
+
+FrameInput FrameInput::Of(const Session& session, int64_t utime) {
+  const auto& state = session.simulation().state();
+  const auto& model = session.simulation().model();
+  FrameInput input;
+  input.cols = model.cols;
+  input.rows = model.rows;
+  input.x = state.x;
+  input.y = state.y;
+  input.z = state.z;
+  input.camera = session.scene().camera;
+  input.shading = session.scene().service.shading;
+  input.pole_height = session.scene().sim.pole_height;
+  input.pole_radius = session.scene().sim.pole_radius;
+  input.info = MakeFrameInfo(session, utime);
+  return input;
+}
+
+// copied state => flag mesh => frame
+const render::Framebuffer& FramePainter::Paint(const FrameInput& input, int threads) {
+  if (input.pole_height != pole_height_ || input.pole_radius != pole_radius_) {
+    scene_ = render::DefaultRenderScene(float(input.pole_height), float(input.pole_radius));
+    pole_height_ = input.pole_height;
+    pole_radius_ = input.pole_radius;
+  }
+  render::UpdateFlagMesh(input.cols, input.rows, input.x.data(), input.y.data(), input.z.data(),
+                         &scene_.meshes[0]);
+  render::RenderOptions options;
+  options.mode = input.shading;
+  options.threads = threads;
+  renderer_.Render(scene_, input.camera, options, &framebuffer_);
+  return framebuffer_;
+}
+
+}  // namespace flagsim
