@@ -26,8 +26,9 @@ void Note(int64_t count, const char* what) {
 
 /// What the log held that did not go into the output as it was.
 void ReportSkips(const LogFramesReport& report) {
-  Note(report.skipped_before_keyframe,
-       "frame(s) before the first whole keyframe skipped (recorded mid-stream)");
+  Note(report.skipped_before_whole,
+       "frame(s) before the first whole frame skipped (recorded mid-stream: the rolling refresh "
+       "completes the picture within a second)");
   Note(report.lost,
        "frame(s) with tiles missing (the frame hash did not check out): each repeats the last whole frame");
   Note(report.gaps, "frame time(s) with no frame (the server skipped them): each repeats the last frame");
@@ -78,7 +79,7 @@ int Export(const Globals& globals, const ExportRequest& request) {
     std::fprintf(stderr, "flagctl export: %s\n", error.what());
     return kUsage;
   }
-  if (survey.keyframes == 0) return NothingToExport(request, channels, survey);
+  if (survey.manifests == 0) return NothingToExport(request, channels, survey);
   const double rate = request.frame_rate > 0  ? request.frame_rate
                       : survey.frame_rate > 0 ? survey.frame_rate
                                               : kFallbackFrameRate;

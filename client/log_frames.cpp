@@ -49,11 +49,11 @@ double EstimateFrameRate(const std::vector<double>& sim_times) {
   return count / sum;
 }
 
-// FRAME and PARAMS events => counts, the first keyframe's size, the frame rate
+// FRAME and PARAMS events => counts, the first frame's size, the frame rate
 LogSurvey SurveyLog(const std::string& path, const Channels& channels) {
   EventLogReader reader(path);
   LogSurvey survey;
-  std::vector<double> sim_times;  // of the FRAMEs from the first keyframe on
+  std::vector<double> sim_times;  // of the FRAMEs
   std::optional<double> params_rate;
   LogEvent event;
   const auto wanted = [&](const std::string& channel) {
@@ -62,20 +62,20 @@ LogSurvey SurveyLog(const std::string& path, const Channels& channels) {
   while (reader.Next(&event, wanted)) {
     if (event.channel == channels.params) {
       const auto params = Decode<params_t>(event.data);
-      // the rate in force at the first keyframe: the last before it, else the first after
-      if (params && FrameRateOf(*params) && (survey.keyframes == 0 || !params_rate)) {
+      // the rate in force at the first frame: the last before it, else the first after
+      if (params && FrameRateOf(*params) && (survey.manifests == 0 || !params_rate)) {
         params_rate = FrameRateOf(*params);
       }
       continue;
     }
     const auto manifest = Decode<frame_t>(event.data);
     if (!manifest) continue;
-    ++survey.manifests;
-    if (manifest->keyframe && survey.keyframes++ == 0) {
+    if (survey.manifests++ == 0) {
       survey.width = manifest->width;
       survey.height = manifest->height;
     }
-    if (survey.keyframes > 0) sim_times.push_back(manifest->sim_time);
+    survey.keyframes += manifest->keyframe;
+    sim_times.push_back(manifest->sim_time);
   }
   survey.problem = reader.problem();
   if (params_rate && *params_rate > 0) {
@@ -146,10 +146,9 @@ bool LogFrames::OnManifest(const std::vector<uint8_t>& data) {
     return false;
   }
   const bool whole = assembler_.AddManifest(*manifest) == TileAssembler::FrameResult::kComplete;
-  keyframe_seen_ |= manifest->keyframe;
-  if (!started_) {
-    if (!keyframe_seen_ || !whole) {
-      ++report_.skipped_before_keyframe;
+  if (!started_) {  // from the first whole frame: a keyframe, or tiles the rolling refresh completed
+    if (!whole) {
+      ++report_.skipped_before_whole;
       return false;
     }
     started_ = true;

@@ -2,9 +2,10 @@
 // fed through a TileAssembler in the log's order, as a client would have seen them live, and
 // turned into a sequence of whole images that keeps the log's timing:
 //
-//   before the first keyframe        skipped: the picture cannot be whole yet (a log recorded
-//                                    mid-stream); the sequence starts at the first FRAME from
-//                                    the first keyframe on whose frame hash checks out
+//   before the first whole frame     skipped: a log recorded mid-stream has the whole picture
+//                                    once the rolling refresh has come round (within a second)
+//                                    or at a keyframe; the sequence starts at the first FRAME
+//                                    whose frame hash checks out
 //   a FRAME whose hash checks out    its image
 //   a FRAME whose hash does not      (tiles lost on the way to the recorder) the last whole
 //                                    image again, so the timing holds
@@ -31,7 +32,7 @@ namespace flagsim {
 struct LogSurvey {
   int64_t manifests = 0;          ///< FRAME events with the prefix
   int64_t keyframes = 0;          ///< of them, keyframes
-  int width = 0, height = 0;      ///< px, of the first keyframe
+  int width = 0, height = 0;      ///< px, of the first frame
   double frame_rate = 0;          ///< Hz of simulated time; 0 if the log does not tell
   std::string frame_rate_source;  ///< "PARAMS" or "FRAME times", for the user
   std::string problem;            ///< how the log ended if not cleanly (EventLogReader::problem)
@@ -46,13 +47,13 @@ double EstimateFrameRate(const std::vector<double>& sim_times);
 
 /// Counts of what the export met, for the user.
 struct LogFramesReport {
-  int64_t skipped_before_keyframe = 0;  ///< FRAMEs before the first whole keyframe
-  int64_t lost = 0;                     ///< FRAMEs whose hash did not check out: repeated
-  int64_t gaps = 0;                     ///< frame times with no FRAME: repeated
-  int64_t dropped = 0;                  ///< FRAMEs between two frame times
-  int64_t time_jumps = 0;               ///< sim_time going back or far ahead: counted afresh
-  int64_t undecodable = 0;              ///< TILE or FRAME events that are not one
-  int64_t refused_tiles = 0;            ///< tiles the assembler refused (bad data)
+  int64_t skipped_before_whole = 0;  ///< FRAMEs before the first whole frame
+  int64_t lost = 0;                  ///< FRAMEs whose hash did not check out: repeated
+  int64_t gaps = 0;                  ///< frame times with no FRAME: repeated
+  int64_t dropped = 0;               ///< FRAMEs between two frame times
+  int64_t time_jumps = 0;            ///< sim_time going back or far ahead: counted afresh
+  int64_t undecodable = 0;           ///< TILE or FRAME events that are not one
+  int64_t refused_tiles = 0;         ///< tiles the assembler refused (bad data)
 };
 
 class LogFrames {
@@ -90,8 +91,7 @@ class LogFrames {
   double frame_rate_;
   TileAssembler assembler_;
   LogEvent event_;
-  bool keyframe_seen_ = false;
-  bool started_ = false;     ///< the first whole image from the first keyframe on has come
+  bool started_ = false;     ///< the first whole image has come
   double last_time_ = 0;     ///< s, simulated: the last FRAME's
   double first_time_ = 0;    ///< s, simulated: the first image's
   int64_t repeats_due_ = 0;  ///< images to repeat before the next new one

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 
+#include "tile_prediction.hpp"
+
 namespace flagsim {
 
 void TileAssembler::Resize(int width, int height, int tile_size) {
@@ -45,9 +47,10 @@ std::string TileAssembler::Place(const tile_t& tile) {
   if (tile.encoding == tile_t::RAW_RGB8) {
     if (tile.data.size() != size) return "raw tile of the wrong size";
     pixels = tile.data;
-  } else if (tile.encoding == tile_t::ZSTD_RGB8) {
+  } else if (tile.encoding == tile_t::ZSTD_RGB8 || tile.encoding == tile_t::ZSTD_UP_RGB8) {
     const size_t got = ZSTD_decompress(pixels.data(), size, tile.data.data(), tile.data.size());
     if (ZSTD_isError(got) || got != size) return "tile does not decompress to its size";
+    if (tile.encoding == tile_t::ZSTD_UP_RGB8) UnpredictRows(tile.width, &pixels);
   } else {
     return "unknown tile encoding " + std::to_string(tile.encoding);
   }

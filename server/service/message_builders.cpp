@@ -53,6 +53,7 @@ FrameInfo MakeFrameInfo(const Session& session, int64_t utime) {
   info.camera_eye = camera.eye;
   info.camera_target = camera.target;
   info.camera_fov = camera.fov_y * 180 / M_PI;
+  info.frame_rate = session.scene().service.frame_rate;
   return info;
 }
 

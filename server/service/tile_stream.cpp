@@ -4,9 +4,11 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "parallel/worker_pool.hpp"
+#include "tile_prediction.hpp"
 
 namespace flagsim {
 namespace {
@@ -15,15 +17,17 @@ struct ZstdContextDeleter {
   void operator()(ZSTD_CCtx* context) const { ZSTD_freeCCtx(context); }
 };
 
-/// tile_t with its pixels: zstd when that is smaller, else raw.
-tile_t EncodeTile(const std::vector<uint8_t>& pixels, ZSTD_CCtx* context) {
+/// tile_t with its pixels: zstd of their row residuals (tile_prediction.hpp) when that is
+/// smaller, else raw.
+tile_t EncodeTile(const std::vector<uint8_t>& pixels, int width, ZSTD_CCtx* context) {
   tile_t tile{};
-  std::vector<uint8_t> compressed(ZSTD_compressBound(pixels.size()));
-  const size_t size = ZSTD_compressCCtx(context, compressed.data(), compressed.size(), pixels.data(),
-                                        pixels.size(), TileStream::kCompressionLevel);
+  const std::vector<uint8_t> residuals = PredictRows(pixels, width);
+  std::vector<uint8_t> compressed(ZSTD_compressBound(residuals.size()));
+  const size_t size = ZSTD_compressCCtx(context, compressed.data(), compressed.size(), residuals.data(),
+                                        residuals.size(), TileStream::kCompressionLevel);
   if (!ZSTD_isError(size) && size < pixels.size()) {
     compressed.resize(size);
-    tile.encoding = tile_t::ZSTD_RGB8;
+    tile.encoding = tile_t::ZSTD_UP_RGB8;
     tile.data = std::move(compressed);
   } else {
     tile.encoding = tile_t::RAW_RGB8;
@@ -76,20 +80,15 @@ void TileStream::RequestKeyframe(int64_t request_id) {
 // image => per-tile hashes => the tiles to send (changed, keyframe, rolling) => compressed => manifest
 EncodedFrame TileStream::Encode(const render::Framebuffer& image, const FrameInfo& info, int threads) {
   if (image.width != width_ || image.height != height_) Resize(image.width, image.height);
-  const bool keyframe = keyframe_requested_ || frames_since_keyframe_ >= kKeyframeInterval ||
-                        std::find(ever_sent_.begin(), ever_sent_.end(), false) != ever_sent_.end();
+  const bool keyframe =
+      keyframe_requested_ || std::find(ever_sent_.begin(), ever_sent_.end(), false) != ever_sent_.end();
   const std::vector<uint64_t> hashes = HashTiles(image, threads);
   EncodedFrame frame;
-  std::vector<int32_t> chosen = Choose(hashes, keyframe);
+  std::vector<int32_t> chosen = Choose(hashes, keyframe, RollingTiles(info.frame_rate));
   frame.tiles = Compress(image, info, chosen, hashes, threads);
   for (const tile_t& tile : frame.tiles) frame.encoded_bytes += tile.data.size();
   frame.manifest = Manifest(image, info, keyframe, std::move(chosen));
-  if (keyframe) {
-    keyframe_requested_ = false;
-    frames_since_keyframe_ = 0;
-  } else {
-    ++frames_since_keyframe_;
-  }
+  if (keyframe) keyframe_requested_ = false;
   return frame;
 }
 
@@ -115,16 +114,25 @@ std::vector<uint64_t> TileStream::HashTiles(const render::Framebuffer& image, in
   return hashes;
 }
 
+// Tiles per frame that take the rolling refresh round the image in kRefreshSeconds of frames
+// (frame rate 0, frames only when asked for: each is a keyframe anyway).
+int TileStream::RollingTiles(double frame_rate) const {
+  const int tiles = tiles_x_ * tiles_y_;
+  const double frames = frame_rate * kRefreshSeconds;
+  const int rolling = frames >= 1 ? int(std::ceil(tiles / frames)) : kMinRollingRefresh;
+  return std::clamp(rolling, std::min(kMinRollingRefresh, tiles), tiles);
+}
+
 // The tiles to send: all of a keyframe, else those changed since they were last sent and the
-// rolling refresh's next few. They count as sent from here.
-std::vector<int32_t> TileStream::Choose(const std::vector<uint64_t>& hashes, bool keyframe) {
+// rolling refresh's next `rolling`. They count as sent from here.
+std::vector<int32_t> TileStream::Choose(const std::vector<uint64_t>& hashes, bool keyframe, int rolling) {
   const int tiles = static_cast<int>(hashes.size());
   std::vector<int32_t> chosen;
   for (int t = 0; t < tiles; ++t) {
-    const bool rolling = (size_t(t) + tiles - rolling_next_) % tiles < size_t(kRollingRefresh);
-    if (keyframe || rolling || hashes[t] != sent_hash_[t]) chosen.push_back(t);
+    const bool refresh = (size_t(t) + tiles - rolling_next_) % tiles < size_t(rolling);
+    if (keyframe || refresh || hashes[t] != sent_hash_[t]) chosen.push_back(t);
   }
-  rolling_next_ = (rolling_next_ + kRollingRefresh) % tiles;
+  rolling_next_ = (rolling_next_ + rolling) % tiles;
   for (const int32_t t : chosen) {
     sent_hash_[t] = hashes[t];
     ever_sent_[t] = true;
@@ -145,7 +153,7 @@ std::vector<tile_t> TileStream::Compress(const render::Framebuffer& image, const
     const int t = chosen[i];
     const TileBox box = TileRect(t);
     tile_t& tile = tiles[i];
-    tile = EncodeTile(TilePixels(image, box.x, box.y, box.width, box.height), context.get());
+    tile = EncodeTile(TilePixels(image, box.x, box.y, box.width, box.height), box.width, context.get());
     tile.utime = info.utime;
     tile.frame_id = next_frame_id_;
     tile.tile_index = t;

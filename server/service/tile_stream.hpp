@@ -1,14 +1,15 @@
 // The frame stream: each frame is cut into square tiles; the tiles whose pixels changed since
-// they were last sent are compressed one by one (zstd, or raw when that is smaller) and sent,
-// then a FRAME manifest that lists them and hashes the whole image.
+// they were last sent are compressed one by one (zstd of their row residuals, or raw when that
+// is smaller) and sent, then a FRAME manifest that lists them and hashes the whole image.
 //
-//   keyframe         every tile: on request (REFRESH, coalesced), after a resize, and
-//                    every kKeyframeInterval frames
-//   rolling refresh  a few tiles each frame whether changed or not, round the image, so a
-//                    client that lost tiles converges even if all its requests are lost
+//   keyframe         every tile: on request (REFRESH, coalesced), and the first frame of a size
+//   rolling refresh  some tiles each frame whether changed or not, round the image in
+//                    kRefreshSeconds of frames: a subscriber that joins without asking (a
+//                    recorder), or lost tiles and all its requests, has the whole picture by then
 //
 // Every tile decodes on its own (no state shared between messages), so losing one loses
-// that tile only, until it changes or the rolling refresh comes round.
+// that tile only, until it changes or the rolling refresh comes round. Periodic keyframes
+// would add nothing the rolling refresh does not give, and stall the stream while they go out.
 #pragma once
 
 #include <Eigen/Core>
@@ -31,6 +32,7 @@ struct FrameInfo {
   Eigen::Vector3d camera_eye = Eigen::Vector3d::Zero();      ///< m
   Eigen::Vector3d camera_target = Eigen::Vector3d::Zero();   ///< m, the point looked at
   double camera_fov = 0;                                     ///< degrees, vertical field of view
+  double frame_rate = 0;  ///< Hz of simulated time the frames come at; 0: only when asked for
 };
 
 /// A tile's place in the image, px.
@@ -47,9 +49,9 @@ struct EncodedFrame {
 
 class TileStream {
  public:
-  static constexpr int kKeyframeInterval = 300;  ///< frames (10 s at 30 Hz)
-  static constexpr int kRollingRefresh = 2;      ///< tiles per frame
-  static constexpr int kCompressionLevel = 1;    ///< zstd: fast
+  static constexpr double kRefreshSeconds = 1;  ///< s of frames the rolling refresh goes round in
+  static constexpr int kMinRollingRefresh = 2;  ///< tiles per frame at the least
+  static constexpr int kCompressionLevel = 1;   ///< zstd: fast
 
   explicit TileStream(int tile_size = 64) : tile_size_(tile_size) {}
 
@@ -68,7 +70,8 @@ class TileStream {
   TileBox TileRect(int tile_index) const;
   void Resize(int width, int height);
   std::vector<uint64_t> HashTiles(const render::Framebuffer& image, int threads) const;
-  std::vector<int32_t> Choose(const std::vector<uint64_t>& hashes, bool keyframe);
+  int RollingTiles(double frame_rate) const;
+  std::vector<int32_t> Choose(const std::vector<uint64_t>& hashes, bool keyframe, int rolling);
   std::vector<tile_t> Compress(const render::Framebuffer& image, const FrameInfo& info,
                                const std::vector<int32_t>& chosen, const std::vector<uint64_t>& hashes,
                                int threads) const;
@@ -80,7 +83,6 @@ class TileStream {
   std::vector<uint64_t> sent_hash_;  ///< per tile: the pixel hash last sent
   std::vector<bool> ever_sent_;
   int64_t next_frame_id_ = 0;
-  int64_t frames_since_keyframe_ = 0;
   size_t rolling_next_ = 0;
   bool keyframe_requested_ = false;
   int64_t request_id_ = -1;

@@ -108,17 +108,19 @@ TEST(LogFrames, AWholeLogGivesEveryFrameInOrder) {
   EXPECT_EQ(frames.reader().end(), EventLogReader::End::kClean);
 }
 
-TEST(LogFrames, ALogRecordedMidStreamStartsAtItsFirstKeyframe) {
+// A recorder that joins a still picture mid-stream gets no keyframe: 2 of its 6 tiles a frame
+// from the rolling refresh, so the third frame is the first whole one, and the export starts there.
+TEST(LogFrames, ALogRecordedMidStreamStartsAtItsFirstWholeFrame) {
   LogBuilder builder;
-  for (int k = 0; k < 3; ++k) builder.Frame(k, k * 0.1, {}, false);  // before the recorder
-  builder.Frame(3, 0.3);
-  builder.Frame(4, 0.4);
-  builder.RequestKeyframe();
-  for (int k = 5; k < 8; ++k) builder.Frame(k, k * 0.1);
+  for (int k = 0; k < 3; ++k) builder.Frame(0, k * 0.1, {}, false);  // before the recorder
+  for (int k = 3; k < 9; ++k) builder.Frame(0, k * 0.1);
   const std::string& path = builder.Close();
+  const LogSurvey survey = SurveyLog(path, builder.channels());
+  EXPECT_EQ(survey.keyframes, 0);
+  EXPECT_EQ(survey.width, 130);
   LogFrames frames(path, builder.channels(), 10);
-  EXPECT_EQ(Seeds(&frames), (std::vector<int>{5, 6, 7}));
-  EXPECT_EQ(frames.report().skipped_before_keyframe, 2);
+  EXPECT_EQ(Seeds(&frames), (std::vector<int>{0, 0, 0, 0}));
+  EXPECT_EQ(frames.report().skipped_before_whole, 2);
 }
 
 TEST(LogFrames, AFrameWithTilesLostRepeatsTheLastWholeOne) {

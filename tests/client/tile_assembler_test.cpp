@@ -65,7 +65,7 @@ TEST(TileAssembler, LostTilesHealByTheRollingRefresh) {
             TileAssembler::FrameResult::kIncomplete);
   int frames = 0;
   while (Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler) != TileAssembler::FrameResult::kComplete) {
-    ASSERT_LT(++frames, 12 / TileStream::kRollingRefresh + 1) << "the refresh must come round";
+    ASSERT_LT(++frames, 12 / TileStream::kMinRollingRefresh + 1) << "the refresh must come round";
   }
   EXPECT_EQ(assembler.image(), image.rgb);
 }

@@ -68,13 +68,13 @@ TEST(TileStream, UnchangedTilesAreNotSentAgainBarTheRollingRefresh) {
   stream.Encode(image, FrameInfo{}, 1);
   EncodedFrame frame = stream.Encode(image, FrameInfo{}, 1);
   EXPECT_FALSE(frame.manifest.keyframe);
-  EXPECT_EQ(frame.manifest.num_tiles, TileStream::kRollingRefresh);
+  EXPECT_EQ(frame.manifest.num_tiles, TileStream::kMinRollingRefresh);
   image.Pixel(130, 70)[0] ^= 1;  // one pixel of tile (2, 1) = index 6
   frame = stream.Encode(image, FrameInfo{}, 1);
   EXPECT_NE(std::find(frame.manifest.tile_indices.begin(), frame.manifest.tile_indices.end(), 6),
             frame.manifest.tile_indices.end());
   EXPECT_EQ(frame.manifest.num_tiles,
-            TileStream::kRollingRefresh + 1 - (frame.manifest.tile_indices[0] == 6));
+            TileStream::kMinRollingRefresh + 1 - (frame.manifest.tile_indices[0] == 6));
 }
 
 TEST(TileStream, TheRollingRefreshComesRoundEveryTile) {
@@ -86,6 +86,27 @@ TEST(TileStream, TheRollingRefreshComesRoundEveryTile) {
     for (const int32_t t : stream.Encode(image, FrameInfo{}, 1).manifest.tile_indices) ++seen[t];
   }
   for (const int count : seen) EXPECT_EQ(count, 1);
+}
+
+// At a frame rate, the rolling refresh sends every tile within kRefreshSeconds of frames, however
+// still the picture: a recorder that joins mid-stream has the whole picture by then.
+TEST(TileStream, AtAFrameRateEveryTileGoesOutWithinTheRefreshTime) {
+  for (const double frame_rate : {1.0, 7.0, 30.0, 60.0}) {
+    TileStream stream;
+    render::Framebuffer image;
+    image.Resize(1280, 720);  // 20 x 12 tiles
+    FrameInfo info;
+    info.frame_rate = frame_rate;
+    stream.Encode(image, info, 1);  // the first: a keyframe
+    std::vector<int> seen(240, 0);
+    const int frames = int(frame_rate * TileStream::kRefreshSeconds);
+    for (int i = 0; i < frames; ++i) {
+      const EncodedFrame frame = stream.Encode(image, info, 1);
+      EXPECT_FALSE(frame.manifest.keyframe);
+      for (const int32_t t : frame.manifest.tile_indices) ++seen[t];
+    }
+    for (int t = 0; t < 240; ++t) ASSERT_GE(seen[t], 1) << "tile " << t << " at " << frame_rate << " Hz";
+  }
 }
 
 TEST(TileStream, ARequestMakesTheNextFrameAKeyframe) {

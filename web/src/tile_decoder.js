@@ -4,13 +4,15 @@
 //                                                  pixelHash, bytes }] }
 //   tile --decodeTile--> RGB8 pixels, rows top to bottom, checked against the tile's XXH3-64
 //
-// Each tile decodes on its own (raw, or one zstd frame of its RGB8 bytes).
+// Each tile decodes on its own: raw, one zstd frame of its RGB8 bytes, or one zstd frame of its
+// row residuals (each byte minus the byte one row up; in the first row, one pixel left).
 import { decompress } from "fzstd";
 import { createXXHash3 } from "hash-wasm";
 
 export const kVersion = 1;
 export const kEncodingRaw = 0;
 export const kEncodingZstd = 1;
+export const kEncodingZstdUp = 2;
 const kHeaderBytes = 48;
 const kTileHeaderBytes = 4 + 4 * 2 + 1 + 8 + 4;  ///< index, x y w h, encoding, hash, byte count
 const kMaxSide = 8192;  ///< px: a larger picture is refused (as flagctl's assembler does)
@@ -94,12 +96,23 @@ export function decodeTile(tile, hasher) {
     pixels = tile.bytes;
   } else if (tile.encoding === kEncodingZstd) {
     pixels = decompressTile(tile, size);
+  } else if (tile.encoding === kEncodingZstdUp) {
+    pixels = unpredictRows(decompressTile(tile, size), tile.width);
   } else {
-    throw new Error(`tile ${tile.index}: encoding ${tile.encoding} is not 0 (raw) or 1 (zstd)`);
+    throw new Error(`tile ${tile.index}: encoding ${tile.encoding} is not 0 (raw), 1 (zstd) or 2 (zstd of row residuals)`);
   }
   const hash = hasher.hex(pixels);
   if (hash !== tile.pixelHash) throw new Error(`tile ${tile.index}: pixel hash ${hash}, expected ${tile.pixelHash}`);
   return pixels;
+}
+
+/// Row residuals -> RGB8 pixels, in place: each byte plus the byte one row up (the first row:
+/// plus the byte one pixel left), modulo 256.
+function unpredictRows(bytes, width) {
+  const stride = width * 3;
+  for (let i = 3; i < Math.min(stride, bytes.length); i += 1) bytes[i] = (bytes[i] + bytes[i - 3]) & 255;
+  for (let i = stride; i < bytes.length; i += 1) bytes[i] = (bytes[i] + bytes[i - stride]) & 255;
+  return bytes;
 }
 
 /// zstd -> `size` bytes. The output is the tile's size whatever the frame claims, so a bad

@@ -22,10 +22,11 @@ test("an update's header and tiles are read little-endian at the contract's offs
   assert.deepEqual([...tiles[0].bytes], [...tile.zstd]);
 });
 
-test("zstd and raw tiles decode to their pixels", () => {
+test("zstd, zstd of row residuals and raw tiles decode to their pixels", () => {
   const tile = checkTile();
   const common = { index: 0, x: 0, y: 0, width: 16, height: 8, pixelHash: tile.hash };
   assert.deepEqual(decodeTile({ ...common, encoding: 1, bytes: tile.zstd }, hasher), tile.pixels);
+  assert.deepEqual(decodeTile({ ...common, encoding: 2, bytes: tile.zstdUp }, hasher), tile.pixels);
   assert.deepEqual(decodeTile({ ...common, encoding: 0, bytes: tile.pixels }, hasher), tile.pixels);
 });
 

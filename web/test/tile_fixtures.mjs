@@ -4,7 +4,8 @@
 
 const hex = (text) => Uint8Array.from(text.match(/../g), (pair) => parseInt(pair, 16));
 
-/// A 16 x 8 px tile of 4 x 2 px checks: its RGB8 bytes, its zstd frame and its XXH3-64.
+/// A 16 x 8 px tile of 4 x 2 px checks: its RGB8 bytes, its zstd frame, the zstd frame of its row
+/// residuals (each byte minus the byte one row up; in the first row, one pixel left) and its XXH3-64.
 export function checkTile() {
   const pixels = new Uint8Array(16 * 8 * 3);
   for (let y = 0; y < 8; y += 1) {
@@ -15,6 +16,7 @@ export function checkTile() {
   return {
     width: 16, height: 8, pixels,
     zstd: hex("28b52ffd60800005010030f0c8141e3cc80a000109011204240448109090af24e04e09380b006558b821"),
+    zstdUp: hex("28b52ffd608000f5010090f0c814002e74b400d28c4c002e74b4d28c4c130080838004c0414002e020206187830b83f09583c610c1ce0e380b0065e88a0944b09303400820840044"),
     hash: "8ee3560fd16da9d8",
   };
 }

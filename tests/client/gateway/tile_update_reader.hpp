@@ -43,10 +43,11 @@ class TileUpdateReader {
       if (at + bytes > update.size()) return "truncated tile bytes";
       if (x + w > width_ || y + h > height_ || w > tile_size || h > tile_size) return "tile out of the image";
       std::vector<uint8_t> pixels(size_t(w) * h * 3);
-      if (encoding == 1) {
+      if (encoding == 1 || encoding == 2) {
         if (ZSTD_decompress(pixels.data(), pixels.size(), update.data() + at, bytes) != pixels.size()) {
           return "tile does not decompress";
         }
+        if (encoding == 2) AddRowsBack(w, &pixels);
       } else if (bytes == pixels.size()) {
         std::memcpy(pixels.data(), update.data() + at, bytes);
       } else {
@@ -68,6 +69,18 @@ class TileUpdateReader {
   uint32_t tiles() const { return tiles_; }
 
  private:
+  /// Encoding 2: each byte plus the byte one row up (in the first row, one pixel left), mod 256.
+  static void AddRowsBack(int width, std::vector<uint8_t>* pixels) {
+    std::vector<uint8_t>& p = *pixels;
+    const size_t row = size_t(width) * 3;
+    for (size_t i = 0; i < p.size(); ++i) {
+      if (i >= row) {
+        p[i] = uint8_t(p[i] + p[i - row]);
+      } else if (i >= 3) {
+        p[i] = uint8_t(p[i] + p[i - 3]);
+      }
+    }
+  }
   static uint16_t U16(const std::string& b, size_t at) {
     return uint16_t(uint8_t(b[at]) | uint8_t(b[at + 1]) << 8);
   }
