@@ -34,6 +34,31 @@ void BM_EncodeFrame(benchmark::State& bench) {
 
 BENCHMARK(BM_EncodeFrame)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
+/// A keyframe (every tile, as a REFRESH asks) of the same 1280 x 720 picture.
+void BM_EncodeKeyframe(benchmark::State& bench) {
+  const int threads = int(bench.range(0));
+  Scene scene;
+  Session session(scene);
+  for (int i = 0; i < 500; ++i) session.Step();
+  FramePainter painter;
+  const render::Framebuffer image = painter.Paint(FrameInput::Of(session, 0), 1);
+  TileStream tiles;
+  double bytes = 0;
+  int64_t frames = 0;
+  for (auto _ : bench) {
+    tiles.RequestKeyframe(frames++);
+    bytes += double(tiles.Encode(image, FrameInfo{}, threads).encoded_bytes);
+  }
+  bench.counters["bytes_per_keyframe"] = bytes / double(frames);
+}
+
+BENCHMARK(BM_EncodeKeyframe)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 }  // namespace flagsim
 

@@ -200,6 +200,7 @@ int Snapshot(const Globals& globals, const std::string& path) {
   std::vector<uint8_t> picture;
   int width = 0, height = 0;
   int64_t frame_id = -1;
+  double completed = 0;  // s, monotonic: when the whole frame was there (before the PNG is written)
   SubscribeDecoded<tile_t>(
       link.bus, link.channels.tile, [&](const tile_t& tile) { assembler.AddTile(tile); }, nullptr, 10000);
   SubscribeDecoded<frame_t>(
@@ -212,6 +213,7 @@ int Snapshot(const Globals& globals, const std::string& path) {
           width = assembler.width();
           height = assembler.height();
           frame_id = manifest.frame_id;
+          completed = MonotonicSeconds();
         }
         complete = whole;
         keyframe_incomplete |= manifest.keyframe && !whole;
@@ -237,7 +239,7 @@ int Snapshot(const Globals& globals, const std::string& path) {
     return 1;
   }
   std::printf("%s: %d x %d, frame %lld, complete %.0f ms after the request%s\n", path.c_str(), width, height,
-              static_cast<long long>(frame_id), 1000 * (MonotonicSeconds() - start),
+              static_cast<long long>(frame_id), 1000 * (completed - start),
               answered
                   ? ""
                   : " (no server answered it: a stream that takes no commands, such as a log playing back)");

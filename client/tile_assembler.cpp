@@ -4,10 +4,25 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "tile_prediction.hpp"
 
 namespace flagsim {
+namespace {
+
+struct ZstdDecoderDeleter {
+  void operator()(ZSTD_DCtx* context) const { ZSTD_freeDCtx(context); }
+};
+
+/// This thread's decompression context, kept for its life: ZSTD_decompress would allocate (and
+/// fault in) a new one for every tile.
+ZSTD_DCtx* ThreadDecompressor() {
+  thread_local const std::unique_ptr<ZSTD_DCtx, ZstdDecoderDeleter> context(ZSTD_createDCtx());
+  return context.get();
+}
+
+}  // namespace
 
 void TileAssembler::Resize(int width, int height, int tile_size) {
   width_ = width;
@@ -43,12 +58,14 @@ std::string TileAssembler::Place(const tile_t& tile) {
   if (tile.frame_id < placed_[index].frame_id) return "";  // older than what we have: skip
 
   const size_t size = size_t(tile.width) * tile.height * 3;
-  std::vector<uint8_t> pixels(size);
+  thread_local std::vector<uint8_t> pixels;  // kept: a new buffer per tile faults in fresh pages
+  pixels.resize(size);
   if (tile.encoding == tile_t::RAW_RGB8) {
     if (tile.data.size() != size) return "raw tile of the wrong size";
     pixels = tile.data;
   } else if (tile.encoding == tile_t::ZSTD_RGB8 || tile.encoding == tile_t::ZSTD_UP_RGB8) {
-    const size_t got = ZSTD_decompress(pixels.data(), size, tile.data.data(), tile.data.size());
+    const size_t got =
+        ZSTD_decompressDCtx(ThreadDecompressor(), pixels.data(), size, tile.data.data(), tile.data.size());
     if (ZSTD_isError(got) || got != size) return "tile does not decompress to its size";
     if (tile.encoding == tile_t::ZSTD_UP_RGB8) UnpredictRows(tile.width, &pixels);
   } else {

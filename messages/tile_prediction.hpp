@@ -15,23 +15,28 @@
 
 namespace flagsim {
 
-/// The residuals of `pixels`: `width` RGB8 pixels a row, rows top to bottom.
-inline std::vector<uint8_t> PredictRows(const std::vector<uint8_t>& pixels, int width) {
-  const size_t stride = size_t(width) * 3;
-  std::vector<uint8_t> residuals(pixels.size());
-  for (size_t i = 0; i < pixels.size(); ++i) {
-    const uint8_t prediction = i >= stride ? pixels[i - stride] : (i >= 3 ? pixels[i - 3] : 0);
-    residuals[i] = static_cast<uint8_t>(pixels[i] - prediction);
-  }
-  return residuals;
+/// The residuals of `pixels` (`width` RGB8 pixels a row, rows top to bottom) into `residuals`.
+inline void PredictRows(const std::vector<uint8_t>& pixels, int width, std::vector<uint8_t>* residuals) {
+  const size_t size = pixels.size(), stride = std::min(size_t(width) * 3, size);
+  residuals->resize(size);
+  const uint8_t* __restrict p = pixels.data();
+  uint8_t* __restrict r = residuals->data();
+  for (size_t i = 0; i < std::min<size_t>(3, size); ++i) r[i] = p[i];
+  for (size_t i = 3; i < stride; ++i) r[i] = static_cast<uint8_t>(p[i] - p[i - 3]);
+  for (size_t i = stride; i < size; ++i) r[i] = static_cast<uint8_t>(p[i] - p[i - stride]);  // vectorises
 }
 
 /// The pixels back from their residuals, in place.
 inline void UnpredictRows(int width, std::vector<uint8_t>* bytes) {
-  std::vector<uint8_t>& b = *bytes;
-  const size_t stride = size_t(width) * 3;
-  for (size_t i = 3; i < std::min(stride, b.size()); ++i) b[i] = static_cast<uint8_t>(b[i] + b[i - 3]);
-  for (size_t i = stride; i < b.size(); ++i) b[i] = static_cast<uint8_t>(b[i] + b[i - stride]);
+  uint8_t* b = bytes->data();
+  const size_t size = bytes->size(), stride = std::min(size_t(width) * 3, size);
+  for (size_t i = 3; i < stride; ++i) b[i] = static_cast<uint8_t>(b[i] + b[i - 3]);
+  for (size_t row = stride; row < size; row += stride) {  // each row from the one above, vectorised
+    const uint8_t* __restrict above = b + row - stride;
+    uint8_t* __restrict here = b + row;
+    for (size_t i = 0; i < std::min(stride, size - row); ++i)
+      here[i] = static_cast<uint8_t>(here[i] + above[i]);
+  }
 }
 
 }  // namespace flagsim

@@ -17,18 +17,27 @@ struct ZstdContextDeleter {
   void operator()(ZSTD_CCtx* context) const { ZSTD_freeCCtx(context); }
 };
 
-/// tile_t with its pixels: zstd of their row residuals (tile_prediction.hpp) when that is
-/// smaller, else raw.
-tile_t EncodeTile(const std::vector<uint8_t>& pixels, int width, ZSTD_CCtx* context) {
+/// This thread's compression context, kept for its life: a new one per tile or frame would
+/// allocate (and fault in) its working memory each time, which cost a keyframe several ms.
+ZSTD_CCtx* ThreadCompressor() {
+  thread_local const std::unique_ptr<ZSTD_CCtx, ZstdContextDeleter> context(ZSTD_createCCtx());
+  return context.get();
+}
+
+/// tile_t with the pixels of `box`: zstd of their row residuals (tile_prediction.hpp) when that
+/// is smaller, else raw. The working buffers are this thread's, kept: allocating a keyframe's
+/// worth afresh (and the heap handing it back between keyframes) cost several ms of page faults.
+tile_t EncodeTile(const render::Framebuffer& image, const TileBox& box) {
+  thread_local std::vector<uint8_t> pixels, residuals, compressed;
+  TilePixels(image, box, &pixels);
+  PredictRows(pixels, box.width, &residuals);
+  compressed.resize(ZSTD_compressBound(residuals.size()));
+  const size_t size = ZSTD_compressCCtx(ThreadCompressor(), compressed.data(), compressed.size(),
+                                        residuals.data(), residuals.size(), TileStream::kCompressionLevel);
   tile_t tile{};
-  const std::vector<uint8_t> residuals = PredictRows(pixels, width);
-  std::vector<uint8_t> compressed(ZSTD_compressBound(residuals.size()));
-  const size_t size = ZSTD_compressCCtx(context, compressed.data(), compressed.size(), residuals.data(),
-                                        residuals.size(), TileStream::kCompressionLevel);
   if (!ZSTD_isError(size) && size < pixels.size()) {
-    compressed.resize(size);
     tile.encoding = tile_t::ZSTD_UP_RGB8;
-    tile.data = std::move(compressed);
+    tile.data.assign(compressed.begin(), compressed.begin() + std::ptrdiff_t(size));
   } else {
     tile.encoding = tile_t::RAW_RGB8;
     tile.data = pixels;
@@ -63,13 +72,13 @@ TileBox TileStream::TileRect(int t) const {
 
 int64_t ImageHash(const uint8_t* data, size_t size) { return static_cast<int64_t>(XXH3_64bits(data, size)); }
 
-std::vector<uint8_t> TilePixels(const render::Framebuffer& image, int x, int y, int width, int height) {
-  std::vector<uint8_t> pixels(size_t(width) * height * 3);
-  for (int row = 0; row < height; ++row) {
-    const uint8_t* source = image.Pixel(x, y + row);
-    std::copy(source, source + size_t(width) * 3, pixels.begin() + size_t(row) * width * 3);
+void TilePixels(const render::Framebuffer& image, const TileBox& box, std::vector<uint8_t>* pixels) {
+  const size_t row_bytes = size_t(box.width) * 3;
+  pixels->resize(row_bytes * box.height);
+  for (int row = 0; row < box.height; ++row) {
+    const uint8_t* source = image.Pixel(box.x, box.y + row);
+    std::copy(source, source + row_bytes, pixels->begin() + std::ptrdiff_t(row * row_bytes));
   }
-  return pixels;
 }
 
 void TileStream::RequestKeyframe(int64_t request_id) {
@@ -140,20 +149,17 @@ std::vector<int32_t> TileStream::Choose(const std::vector<uint64_t>& hashes, boo
   return chosen;
 }
 
-// The chosen tiles' messages, each compressed on its own (one zstd context per thread).
+// The chosen tiles' messages, each compressed on its own.
 std::vector<tile_t> TileStream::Compress(const render::Framebuffer& image, const FrameInfo& info,
                                          const std::vector<int32_t>& chosen,
                                          const std::vector<uint64_t>& hashes, int threads) const {
   std::vector<tile_t> tiles(chosen.size());
   const int count = static_cast<int>(chosen.size());
-  std::vector<std::unique_ptr<ZSTD_CCtx, ZstdContextDeleter>> contexts(std::max(1, threads));
-  ParallelForEachParticipant(count, threads, [&](int i, int participant) {
-    auto& context = contexts[participant];
-    if (!context) context.reset(ZSTD_createCCtx());
+  ParallelFor(count, threads, [&](int i) {
     const int t = chosen[i];
     const TileBox box = TileRect(t);
     tile_t& tile = tiles[i];
-    tile = EncodeTile(TilePixels(image, box.x, box.y, box.width, box.height), box.width, context.get());
+    tile = EncodeTile(image, box);
     tile.utime = info.utime;
     tile.frame_id = next_frame_id_;
     tile.tile_index = t;

@@ -73,7 +73,7 @@ class LogBuilder {
   std::string path_;
   Channels channels_;
   std::unique_ptr<LogPublisher> log_;
-  TileStream stream_;
+  TileStream stream_{64};
 };
 
 /// The seed of the picture `image` is, or -1.

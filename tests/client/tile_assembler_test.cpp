@@ -34,7 +34,7 @@ TileAssembler::FrameResult Deliver(const EncodedFrame& frame, TileAssembler* ass
 }
 
 TEST(TileAssembler, AKeyframeAloneGivesTheServersImage) {
-  TileStream stream;
+  TileStream stream(64);
   const render::Framebuffer image = Picture(3);
   TileAssembler assembler;
   EXPECT_EQ(Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler), TileAssembler::FrameResult::kComplete);
@@ -43,7 +43,7 @@ TEST(TileAssembler, AKeyframeAloneGivesTheServersImage) {
 }
 
 TEST(TileAssembler, IncrementsKeepItExact) {
-  TileStream stream;
+  TileStream stream(64);
   TileAssembler assembler;
   render::Framebuffer image = Picture(3);
   Deliver(stream.Encode(image, FrameInfo{}, 1), &assembler);
@@ -56,7 +56,7 @@ TEST(TileAssembler, IncrementsKeepItExact) {
 }
 
 TEST(TileAssembler, LostTilesHealByTheRollingRefresh) {
-  TileStream stream;
+  TileStream stream(64);
   TileAssembler assembler;
   const render::Framebuffer image = Picture(5);
   std::vector<bool> lost(12, false);
@@ -71,7 +71,7 @@ TEST(TileAssembler, LostTilesHealByTheRollingRefresh) {
 }
 
 TEST(TileAssembler, BadTilesAreRefusedAndChangeNothing) {
-  TileStream stream;
+  TileStream stream(64);
   TileAssembler assembler;
   const EncodedFrame frame = stream.Encode(Picture(2), FrameInfo{}, 1);
   Deliver(frame, &assembler);
@@ -100,7 +100,7 @@ TEST(TileAssembler, BadTilesAreRefusedAndChangeNothing) {
 }
 
 TEST(TileAssembler, FollowsANewImageSize) {
-  TileStream stream;
+  TileStream stream(64);
   TileAssembler assembler;
   Deliver(stream.Encode(Picture(1), FrameInfo{}, 1), &assembler);
   render::Framebuffer small;

@@ -91,7 +91,7 @@ TEST(MessageBuilders, FramesCarryTheCameraAsDrawn) {
   EXPECT_NEAR(info.camera_fov, 50, 1e-12);  // degrees
   EXPECT_EQ(info.view, camera.View());
   // In the manifest, and through the wire.
-  TileStream stream;
+  TileStream stream(64);
   FramePainter painter;
   const frame_t manifest = stream.Encode(painter.Paint(FrameInput::Of(session, 5), 1), info, 1).manifest;
   const auto bytes = testing::Encode(manifest);

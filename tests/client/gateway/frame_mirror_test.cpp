@@ -39,7 +39,7 @@ void Scribble(render::Framebuffer* image, int frame) {
 }
 
 TEST(FrameMirror, AJoiningClientGetsAKeyframeOfTheNewestFrame) {
-  TileStream stream;
+  TileStream stream(64);
   FrameMirror mirror;
   const render::Framebuffer image = Picture(200, 130, 1);
   ASSERT_EQ(Broadcast(stream, image, &mirror), FrameMirror::Result::kComplete);
@@ -55,7 +55,7 @@ TEST(FrameMirror, AJoiningClientGetsAKeyframeOfTheNewestFrame) {
 }
 
 TEST(FrameMirror, IncrementsCarryOnlyTheChangedTilesAndStayExact) {
-  TileStream stream;
+  TileStream stream(64);
   FrameMirror mirror;
   render::Framebuffer image = Picture(200, 130, 1);
   Broadcast(stream, image, &mirror);
@@ -74,7 +74,7 @@ TEST(FrameMirror, IncrementsCarryOnlyTheChangedTilesAndStayExact) {
 }
 
 TEST(FrameMirror, ASlowClientSkipsToTheNewestFrameExactly) {
-  TileStream stream;
+  TileStream stream(64);
   FrameMirror mirror;
   render::Framebuffer image = Picture(200, 130, 1);
   Broadcast(stream, image, &mirror);
@@ -92,7 +92,7 @@ TEST(FrameMirror, ASlowClientSkipsToTheNewestFrameExactly) {
 }
 
 TEST(FrameMirror, ANewImageSizeIsAKeyframe) {
-  TileStream stream;
+  TileStream stream(64);
   FrameMirror mirror;
   Broadcast(stream, Picture(200, 130, 1), &mirror);
   ClientTiles client;
@@ -106,7 +106,7 @@ TEST(FrameMirror, ANewImageSizeIsAKeyframe) {
 }
 
 TEST(FrameMirror, AFrameWithLostTilesIsNotMirrored) {
-  TileStream stream;
+  TileStream stream(64);
   FrameMirror mirror;
   const render::Framebuffer image = Picture(200, 130, 1);
   const EncodedFrame frame = stream.Encode(image, FrameInfo{}, 1);
@@ -116,7 +116,7 @@ TEST(FrameMirror, AFrameWithLostTilesIsNotMirrored) {
 }
 
 TEST(FrameMirror, ImagesAreKeptOnlyWhenWanted) {
-  TileStream stream;
+  TileStream stream(64);
   FrameMirror mirror;
   const render::Framebuffer image = Picture(200, 130, 1);
   Broadcast(stream, image, &mirror);
