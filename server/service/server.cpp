@@ -11,6 +11,9 @@ namespace flagsim {
 namespace {
 
 constexpr double kFastBatch = 0.005;     ///< s of the clock stepped back to back in --fast mode
+/// s of the clock a loop that is behind steps before it turns to the bus and the publications
+/// again: a command (a REFRESH) waits no longer than this for its turn.
+constexpr double kSteppingBatch = 0.01;
 constexpr double kMaxWait = 0.05;        ///< s, the longest the loop sleeps on the bus
 constexpr double kKeyframeWait = 0.001;  ///< s, the loop's sleep while a keyframe waits for the stage
 
@@ -68,12 +71,13 @@ double Server::Tick(double now) {
 
 // Real time: the accumulator owes the simulation the clock's time since the last tick, in whole
 // steps; a loop that fell far behind drops the excess rather than spiralling. --fast: steps for
-// kFastBatch of the clock (at least one), then the bus gets its turn.
+// kFastBatch of the clock (at least one), then the bus gets its turn. In real time a batch ends
+// after kSteppingBatch of the clock, and what is still owed is stepped at the next tick.
 void Server::StepDue(double now) {
   const double dt = session_.scene().sim.dt;
   accumulator_ = options_.fast ? 0.0 : std::min(accumulator_ + (now - last_tick_), kMaxCatchUp);
   last_tick_ = now;
-  const double deadline = now + (options_.fast ? kFastBatch : kMaxCatchUp);
+  const double deadline = now + (options_.fast ? kFastBatch : kSteppingBatch);
   const auto ended = [this] {
     return options_.duration > 0 && session_.simulation().state().time >= options_.duration;
   };
