@@ -42,14 +42,14 @@
 #include <utility>
 #include <vector>
 
-#include "bullet_flag.hpp"
-#include "bullet_work_precision.hpp"
-#include "lab/cpu_time.hpp"
-#include "lab/trajectory.hpp"
-#include "scene_file.hpp"
-#include "sim/cloth_model.hpp"
-#include "sim/integrator.hpp"
-#include "sim/simulation.hpp"
+#include "bench/bullet_flag.hpp"
+#include "bench/bullet_work_precision.hpp"
+#include "server/lab/cpu_time.hpp"
+#include "server/lab/trajectory.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim {
 namespace {

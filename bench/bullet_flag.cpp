@@ -1,4 +1,4 @@
-#include "bullet_flag.hpp"
+#include "bench/bullet_flag.hpp"
 
 #include <cmath>
 

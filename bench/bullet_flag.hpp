@@ -29,10 +29,10 @@
 #include <memory>
 #include <vector>
 
-#include "sim/cloth_model.hpp"
-#include "sim/cloth_state.hpp"
-#include "sim/sim_params.hpp"
-#include "sim/wind_field.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/sim_params.hpp"
+#include "server/sim/wind_field.hpp"
 
 namespace flagsim {
 

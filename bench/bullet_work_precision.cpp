@@ -12,16 +12,16 @@
 // the relative wind w - v (Bullet's aerodynamics): its distance from the reference (what the model change
 // alone moves the flag) and Bullet's distance from it (what is left: Bullet's discretisation, its soft links,
 // and the |w - v|^2 / |w|^2 and rest-area scaling of its wind, which flagsim cannot copy).
-#include "bullet_work_precision.hpp"
+#include "bench/bullet_work_precision.hpp"
 
 #include <cstdio>
 #include <string>
 
-#include "bullet_flag.hpp"
-#include "lab/lab_setup.hpp"
-#include "lab/screen_error.hpp"
-#include "lab/table.hpp"
-#include "lab/work_precision_scene.hpp"
+#include "bench/bullet_flag.hpp"
+#include "bench/lab/lab_setup.hpp"
+#include "bench/lab/table.hpp"
+#include "bench/lab/work_precision_scene.hpp"
+#include "server/lab/screen_error.hpp"
 
 namespace flagsim {
 namespace {

@@ -31,12 +31,12 @@
 #include <string>
 #include <vector>
 
-#include "lab/cpu_time.hpp"
-#include "lab/table.hpp"
-#include "lab/triangle_crossings.hpp"
-#include "scene_file.hpp"
-#include "sim/cloth_mesh.hpp"
-#include "sim/simulation.hpp"
+#include "bench/lab/table.hpp"
+#include "server/lab/cpu_time.hpp"
+#include "server/lab/triangle_crossings.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/sim/cloth_mesh.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim::bench {
 namespace {

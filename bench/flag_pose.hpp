@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "render/mesh.hpp"
+#include "server/render/mesh.hpp"
 
 namespace flagsim::bench {
 

@@ -1,4 +1,4 @@
-#include "gl_scene.hpp"
+#include "bench/gl_scene.hpp"
 
 #define EGL_NO_X11  // EGL's native types as plain pointers: no Xlib headers
 #include <EGL/egl.h>

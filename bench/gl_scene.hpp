@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.hpp"
-#include "render/mesh.hpp"
+#include "server/render/camera.hpp"
+#include "server/render/mesh.hpp"
 
 namespace flagsim::bench {
 

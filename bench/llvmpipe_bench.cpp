@@ -32,11 +32,11 @@
 #include <utility>
 #include <vector>
 
-#include "flag_pose.hpp"
-#include "gl_scene.hpp"
-#include "measure.hpp"
-#include "png_file.hpp"
-#include "render/renderer.hpp"
+#include "bench/flag_pose.hpp"
+#include "bench/gl_scene.hpp"
+#include "bench/measure.hpp"
+#include "client/png_file.hpp"
+#include "server/render/renderer.hpp"
 
 namespace flagsim {
 namespace {

@@ -4,8 +4,8 @@
 //   build/bench/render_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
-#include "flag_pose.hpp"
-#include "render/renderer.hpp"
+#include "bench/flag_pose.hpp"
+#include "server/render/renderer.hpp"
 
 namespace flagsim {
 namespace {

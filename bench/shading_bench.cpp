@@ -27,10 +27,10 @@
 #include <utility>
 #include <vector>
 
-#include "flag_pose.hpp"
-#include "measure.hpp"
-#include "render/renderer.hpp"
-#include "render/shading_mode.hpp"
+#include "bench/flag_pose.hpp"
+#include "bench/measure.hpp"
+#include "server/render/renderer.hpp"
+#include "server/render/shading_mode.hpp"
 
 namespace flagsim {
 namespace {

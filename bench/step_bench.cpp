@@ -4,8 +4,8 @@
 //   build/bench/step_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
-#include "scene_file.hpp"
-#include "sim/simulation.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim {
 namespace {

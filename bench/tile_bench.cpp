@@ -5,9 +5,9 @@
 //   build/bench/tile_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
-#include "frame_painter.hpp"
-#include "session.hpp"
-#include "tile_stream.hpp"
+#include "server/service/frame_painter.hpp"
+#include "server/service/session.hpp"
+#include "server/service/tile_stream.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,4 +1,4 @@
-#include "command_client.hpp"
+#include "client/command_client.hpp"
 
 #include <unistd.h>
 

@@ -9,11 +9,11 @@
 #include <random>
 #include <string>
 
-#include "bus.hpp"
-#include "channels.hpp"
-#include "checked_decode.hpp"
 #include "flagsim/ack_t.hpp"
-#include "utime.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
+#include "messages/checked_decode.hpp"
+#include "messages/utime.hpp"
 
 namespace flagsim {
 

@@ -1,4 +1,4 @@
-#include "flagctl_commands.hpp"
+#include "client/flagctl_commands.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -6,20 +6,20 @@
 #include <iostream>
 #include <optional>
 
-#include "bus.hpp"
-#include "channels.hpp"
-#include "command_client.hpp"
+#include "client/command_client.hpp"
+#include "client/log_recorder.hpp"
+#include "client/png_file.hpp"
+#include "client/printing.hpp"
+#include "client/stream_reader.hpp"
+#include "client/tile_assembler.hpp"
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/frame_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "flagsim/timeline_t.hpp"
 #include "flagsim/wind_command_t.hpp"
-#include "log_recorder.hpp"
-#include "png_file.hpp"
-#include "printing.hpp"
-#include "stream_reader.hpp"
-#include "tile_assembler.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
 
 namespace flagsim {
 

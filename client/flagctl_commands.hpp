@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "channels.hpp"
+#include "client/gateway/serve.hpp"
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
-#include "gateway/serve.hpp"
+#include "messages/channels.hpp"
 
 namespace flagsim {
 

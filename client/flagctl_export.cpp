@@ -10,10 +10,10 @@
 #include <optional>
 #include <stdexcept>
 
-#include "flagctl_commands.hpp"
-#include "frame_output.hpp"
-#include "log_frames.hpp"
-#include "progress_bar.hpp"
+#include "client/flagctl_commands.hpp"
+#include "client/frame_output.hpp"
+#include "client/log_frames.hpp"
+#include "client/progress_bar.hpp"
 
 namespace flagsim {
 namespace {

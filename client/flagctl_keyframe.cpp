@@ -1,4 +1,4 @@
-#include "flagctl_keyframe.hpp"
+#include "client/flagctl_keyframe.hpp"
 
 #include <cstdio>
 #include <cstdlib>

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "flagctl_commands.hpp"
+#include "client/flagctl_commands.hpp"
 
 namespace flagsim {
 

@@ -8,9 +8,9 @@
 #include <csignal>
 #include <cstdio>
 
-#include "channels.hpp"
-#include "flagctl_commands.hpp"
-#include "flagctl_keyframe.hpp"
+#include "client/flagctl_commands.hpp"
+#include "client/flagctl_keyframe.hpp"
+#include "messages/channels.hpp"
 
 namespace {
 
@@ -172,10 +172,11 @@ int main(int argc, char** argv) {
   serve->add_option("--listen", serve_options.listen, "HOST:PORT to listen on (port 0: any free one)")
       ->capture_default_str();
   serve
-      ->add_option("--token", serve_options.token,
-                   "required on every request (?token=, a bearer header, or the page's cookie); generated when "
-                   "listening beyond loopback without one; from $FLAGSIM_TOKEN if set, which keeps it out of "
-                   "process listings")
+      ->add_option(
+          "--token", serve_options.token,
+          "required on every request (?token=, a bearer header, or the page's cookie); generated when "
+          "listening beyond loopback without one; from $FLAGSIM_TOKEN if set, which keeps it out of "
+          "process listings")
       ->envname("FLAGSIM_TOKEN");
   serve->add_option(
       "--allow-origin", serve_options.allow_origins,

@@ -1,10 +1,10 @@
 // flagctl serve: the live view's gateway (client/gateway/serve.hpp) on the bus of the globals.
 #include <cstdio>
 
-#include "bus.hpp"
-#include "channels.hpp"
-#include "flagctl_commands.hpp"
-#include "gateway/serve.hpp"
+#include "client/flagctl_commands.hpp"
+#include "client/gateway/serve.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
 
 namespace flagsim {
 

@@ -1,10 +1,10 @@
-#include "frame_output.hpp"
+#include "client/frame_output.hpp"
 
 #include <filesystem>
 #include <system_error>
 
-#include "png_file.hpp"
-#include "video_output.hpp"
+#include "client/png_file.hpp"
+#include "client/video_output.hpp"
 
 namespace flagsim {
 namespace {

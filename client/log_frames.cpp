@@ -1,12 +1,12 @@
-#include "log_frames.hpp"
+#include "client/log_frames.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
-#include "checked_decode.hpp"
+#include "client/stream_reader.hpp"
 #include "flagsim/params_t.hpp"
-#include "stream_reader.hpp"
+#include "messages/checked_decode.hpp"
 
 namespace flagsim {
 namespace {

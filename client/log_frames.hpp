@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "channels.hpp"
-#include "event_log_reader.hpp"
-#include "tile_assembler.hpp"
+#include "client/tile_assembler.hpp"
+#include "messages/channels.hpp"
+#include "messages/event_log_reader.hpp"
 
 namespace flagsim {
 

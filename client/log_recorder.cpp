@@ -1,9 +1,9 @@
-#include "log_recorder.hpp"
+#include "client/log_recorder.hpp"
 
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
-#include "utime.hpp"
+#include "messages/utime.hpp"
 
 namespace flagsim {
 

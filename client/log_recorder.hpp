@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "bus.hpp"
+#include "messages/bus.hpp"
 
 namespace lcm {
 class LogFile;

@@ -1,4 +1,4 @@
-#include "png_file.hpp"
+#include "client/png_file.hpp"
 
 #include <png.h>
 

@@ -1,4 +1,4 @@
-#include "printing.hpp"
+#include "client/printing.hpp"
 
 #include <algorithm>
 #include <cstdio>

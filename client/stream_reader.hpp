@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "bus.hpp"
-#include "checked_decode.hpp"
-#include "utime.hpp"
+#include "messages/bus.hpp"
+#include "messages/checked_decode.hpp"
+#include "messages/utime.hpp"
 
 namespace flagsim {
 

@@ -1,4 +1,4 @@
-#include "tile_assembler.hpp"
+#include "client/tile_assembler.hpp"
 
 #include <xxhash.h>
 #include <zstd.h>
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <memory>
 
-#include "tile_prediction.hpp"
+#include "messages/tile_prediction.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,4 +1,4 @@
-#include "video_output.hpp"
+#include "client/video_output.hpp"
 
 #include <cstdio>
 

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "child_process.hpp"
-#include "frame_output.hpp"
+#include "client/child_process.hpp"
+#include "client/frame_output.hpp"
 
 namespace flagsim {
 

@@ -1,4 +1,4 @@
-#include "bus.hpp"
+#include "messages/bus.hpp"
 
 #include <cstdlib>
 #include <lcm/lcm-cpp.hpp>

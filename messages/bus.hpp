@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "publisher.hpp"
+#include "messages/publisher.hpp"
 
 namespace lcm {
 class LCM;

@@ -1,4 +1,4 @@
-#include "channels.hpp"
+#include "messages/channels.hpp"
 
 namespace flagsim {
 

@@ -1,6 +1,6 @@
-#include "checked_decode.hpp"
+#include "messages/checked_decode.hpp"
 
-#include "wire_schema.hpp"
+#include "messages/wire_schema.hpp"
 
 namespace flagsim::wire {
 

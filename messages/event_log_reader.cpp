@@ -1,4 +1,4 @@
-#include "event_log_reader.hpp"
+#include "messages/event_log_reader.hpp"
 
 #include <sys/stat.h>
 

@@ -1,4 +1,4 @@
-#include "wire_schema.hpp"
+#include "messages/wire_schema.hpp"
 
 #include <cctype>
 #include <cstring>

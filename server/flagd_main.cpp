@@ -13,13 +13,13 @@
 #include <cstdio>
 #include <iostream>
 
-#include "bus.hpp"
-#include "channels.hpp"
-#include "parameter_table.hpp"
-#include "render_command.hpp"
-#include "replay_command.hpp"
-#include "scene_file.hpp"
-#include "service/server.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
+#include "server/render_command.hpp"
+#include "server/replay_command.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/service/server.hpp"
 
 namespace {
 

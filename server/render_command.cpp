@@ -1,4 +1,4 @@
-#include "render_command.hpp"
+#include "server/render_command.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -6,12 +6,12 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "channels.hpp"
-#include "png_file.hpp"
-#include "progress_bar.hpp"
-#include "service/log_publisher.hpp"
-#include "service/offline_render.hpp"
-#include "utime.hpp"
+#include "client/png_file.hpp"
+#include "client/progress_bar.hpp"
+#include "messages/channels.hpp"
+#include "messages/utime.hpp"
+#include "server/service/log_publisher.hpp"
+#include "server/service/offline_render.hpp"
 
 namespace flagsim {
 namespace {

@@ -5,7 +5,7 @@
 #include <atomic>
 #include <string>
 
-#include "scene.hpp"
+#include "server/scene/scene.hpp"
 
 namespace flagsim {
 

@@ -1,9 +1,9 @@
-#include "replay_command.hpp"
+#include "server/replay_command.hpp"
 
 #include <cstdio>
 #include <string>
 
-#include "progress_bar.hpp"
+#include "client/progress_bar.hpp"
 
 namespace flagsim {
 

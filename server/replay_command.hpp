@@ -2,7 +2,7 @@
 // the verdict.
 #pragma once
 
-#include "service/replay.hpp"
+#include "server/service/replay.hpp"
 
 namespace flagsim {
 

@@ -5,11 +5,11 @@
 // then the cheapest integrator per scene. The seed's scheme is left out (another ODE).
 #include <cmath>
 
-#include "experiments.hpp"
-#include "lab/screen_error.hpp"
-#include "lab_setup.hpp"
-#include "scene_file.hpp"
-#include "table.hpp"
+#include "bench/lab/experiments.hpp"
+#include "bench/lab/lab_setup.hpp"
+#include "bench/lab/table.hpp"
+#include "server/lab/screen_error.hpp"
+#include "server/scene/scene_file.hpp"
 
 namespace flagsim::lab {
 namespace {

@@ -6,12 +6,12 @@
 
 #include <algorithm>
 
-#include "experiments.hpp"
-#include "lab/cpu_time.hpp"
-#include "lab_setup.hpp"
-#include "scene_file.hpp"
-#include "sim/simulation.hpp"
-#include "table.hpp"
+#include "bench/lab/experiments.hpp"
+#include "bench/lab/lab_setup.hpp"
+#include "bench/lab/table.hpp"
+#include "server/lab/cpu_time.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim::lab {
 namespace {

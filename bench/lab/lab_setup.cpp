@@ -1,11 +1,11 @@
-#include "lab_setup.hpp"
+#include "bench/lab/lab_setup.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "scene_file.hpp"
-#include "sim/cloth_model.hpp"
-#include "sim/forces.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/forces.hpp"
 
 namespace flagsim::lab {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "lab/trajectory.hpp"
-#include "sim/cloth_state.hpp"
-#include "sim/integrator.hpp"
+#include "server/lab/trajectory.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/integrator.hpp"
 
 namespace flagsim::lab {
 

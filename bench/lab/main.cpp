@@ -7,7 +7,7 @@
 #include <functional>
 #include <map>
 
-#include "experiments.hpp"
+#include "bench/lab/experiments.hpp"
 
 int main(int argc, char** argv) {
   const std::map<std::string, std::function<void(const std::string&)>> experiments = {

@@ -5,9 +5,9 @@
 // (-mu F) makes it a different ODE from the reference's.
 #include <cmath>
 
-#include "experiments.hpp"
-#include "lab_setup.hpp"
-#include "table.hpp"
+#include "bench/lab/experiments.hpp"
+#include "bench/lab/lab_setup.hpp"
+#include "bench/lab/table.hpp"
 
 namespace flagsim::lab {
 namespace {

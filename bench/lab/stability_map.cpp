@@ -11,12 +11,12 @@
 // Unconditionally stable integrators are tried up to 0.1 s.
 #include <cmath>
 
-#include "experiments.hpp"
-#include "lab/stability.hpp"
-#include "lab_setup.hpp"
-#include "sim/cloth_model.hpp"
-#include "sim/forces.hpp"
-#include "table.hpp"
+#include "bench/lab/experiments.hpp"
+#include "bench/lab/lab_setup.hpp"
+#include "bench/lab/table.hpp"
+#include "server/lab/stability.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/forces.hpp"
 
 namespace flagsim::lab {
 namespace {

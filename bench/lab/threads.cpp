@@ -10,11 +10,11 @@
 #include <memory>
 #include <thread>
 
-#include "experiments.hpp"
-#include "lab_setup.hpp"
-#include "scene_file.hpp"
-#include "sim/simulation.hpp"
-#include "table.hpp"
+#include "bench/lab/experiments.hpp"
+#include "bench/lab/lab_setup.hpp"
+#include "bench/lab/table.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim::lab {
 namespace {

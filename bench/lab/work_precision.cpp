@@ -4,10 +4,10 @@
 // (m) and on the default camera's 1280 x 720 image (px). Cost: CPU seconds per simulated
 // second on one thread, in float as the server runs (median of three). bullet_bench
 // --work-precision adds Bullet's soft body to the same table (work_precision_scene.hpp).
-#include "experiments.hpp"
-#include "lab_setup.hpp"
-#include "table.hpp"
-#include "work_precision_scene.hpp"
+#include "bench/lab/experiments.hpp"
+#include "bench/lab/lab_setup.hpp"
+#include "bench/lab/table.hpp"
+#include "bench/lab/work_precision_scene.hpp"
 
 namespace flagsim::lab {
 

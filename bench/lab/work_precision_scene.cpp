@@ -1,11 +1,11 @@
-#include "work_precision_scene.hpp"
+#include "bench/lab/work_precision_scene.hpp"
 
 #include <cmath>
 
-#include "lab/screen_error.hpp"
-#include "lab_setup.hpp"
-#include "scene_file.hpp"
-#include "table.hpp"
+#include "bench/lab/lab_setup.hpp"
+#include "bench/lab/table.hpp"
+#include "server/lab/screen_error.hpp"
+#include "server/scene/scene_file.hpp"
 
 namespace flagsim::lab {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "lab/trajectory.hpp"
-#include "render/camera.hpp"
-#include "sim/cloth_state.hpp"
+#include "server/lab/trajectory.hpp"
+#include "server/render/camera.hpp"
+#include "server/sim/cloth_state.hpp"
 
 namespace flagsim::lab {
 

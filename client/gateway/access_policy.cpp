@@ -1,4 +1,4 @@
-#include "access_policy.hpp"
+#include "client/gateway/access_policy.hpp"
 
 #include <algorithm>
 #include <cctype>

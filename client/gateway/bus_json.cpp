@@ -1,4 +1,4 @@
-#include "bus_json.hpp"
+#include "client/gateway/bus_json.hpp"
 
 #include <cinttypes>
 #include <cmath>

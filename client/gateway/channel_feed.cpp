@@ -1,4 +1,4 @@
-#include "channel_feed.hpp"
+#include "client/gateway/channel_feed.hpp"
 
 namespace flagsim::gateway {
 

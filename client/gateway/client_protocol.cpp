@@ -1,7 +1,7 @@
-#include "client_protocol.hpp"
+#include "client/gateway/client_protocol.hpp"
 
-#include "foxglove_wire.hpp"
-#include "gateway.hpp"
+#include "client/gateway/foxglove_wire.hpp"
+#include "client/gateway/gateway.hpp"
 
 namespace flagsim::gateway {
 namespace {

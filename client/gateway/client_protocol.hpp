@@ -19,8 +19,8 @@
 #include <string>
 #include <string_view>
 
-#include "frame_mirror.hpp"
-#include "gateway_catalog.hpp"
+#include "client/gateway/frame_mirror.hpp"
+#include "client/gateway/gateway_catalog.hpp"
 
 namespace flagsim::gateway {
 

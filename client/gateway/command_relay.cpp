@@ -1,4 +1,4 @@
-#include "command_relay.hpp"
+#include "client/gateway/command_relay.hpp"
 
 #include <unistd.h>
 

@@ -9,9 +9,9 @@
 #include <map>
 #include <string>
 
-#include "bus.hpp"
-#include "command_client.hpp"
+#include "client/command_client.hpp"
 #include "flagsim/ack_t.hpp"
+#include "messages/bus.hpp"
 
 namespace flagsim::gateway {
 

@@ -1,9 +1,9 @@
-#include "command_requests.hpp"
+#include "client/gateway/command_requests.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-#include "bus_json.hpp"
+#include "client/gateway/bus_json.hpp"
 
 namespace flagsim::gateway {
 namespace {

@@ -1,4 +1,4 @@
-#include "compressed_image.hpp"
+#include "client/gateway/compressed_image.hpp"
 
 #include <jpeglib.h>
 
@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "bus_json.hpp"
+#include "client/gateway/bus_json.hpp"
 
 namespace flagsim::gateway {
 

@@ -1,4 +1,4 @@
-#include "foxglove_wire.hpp"
+#include "client/gateway/foxglove_wire.hpp"
 
 namespace flagsim::gateway {
 namespace {

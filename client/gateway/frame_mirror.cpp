@@ -1,8 +1,8 @@
-#include "frame_mirror.hpp"
+#include "client/gateway/frame_mirror.hpp"
 
 #include <cstring>
 
-#include "foxglove_wire.hpp"
+#include "client/gateway/foxglove_wire.hpp"
 
 namespace flagsim::gateway {
 namespace {

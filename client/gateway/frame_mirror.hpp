@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "client/tile_assembler.hpp"
 #include "flagsim/frame_t.hpp"
 #include "flagsim/tile_t.hpp"
-#include "tile_assembler.hpp"
 
 namespace flagsim::gateway {
 

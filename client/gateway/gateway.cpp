@@ -1,13 +1,13 @@
-#include "gateway.hpp"
+#include "client/gateway/gateway.hpp"
 
-#include "bus_json.hpp"
-#include "command_requests.hpp"
-#include "compressed_image.hpp"
+#include "client/gateway/bus_json.hpp"
+#include "client/gateway/command_requests.hpp"
+#include "client/gateway/compressed_image.hpp"
+#include "client/gateway/foxglove_wire.hpp"
+#include "client/gateway/process_usage.hpp"
+#include "client/gateway/scene_update.hpp"
+#include "client/stream_reader.hpp"
 #include "flagsim/refresh_request_t.hpp"
-#include "foxglove_wire.hpp"
-#include "process_usage.hpp"
-#include "scene_update.hpp"
-#include "stream_reader.hpp"
 
 namespace flagsim::gateway {
 namespace {

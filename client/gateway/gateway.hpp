@@ -18,16 +18,16 @@
 #include <string>
 #include <string_view>
 
-#include "bus.hpp"
-#include "channel_feed.hpp"
-#include "channels.hpp"
-#include "client_protocol.hpp"
-#include "command_relay.hpp"
+#include "client/gateway/channel_feed.hpp"
+#include "client/gateway/client_protocol.hpp"
+#include "client/gateway/command_relay.hpp"
+#include "client/gateway/frame_mirror.hpp"
+#include "client/gateway/gateway_catalog.hpp"
+#include "client/gateway/session_recorder.hpp"
 #include "flagsim/params_t.hpp"
-#include "frame_mirror.hpp"
-#include "gateway_catalog.hpp"
-#include "session_recorder.hpp"
-#include "utime.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
+#include "messages/utime.hpp"
 
 namespace flagsim::gateway {
 

@@ -1,4 +1,4 @@
-#include "gateway_catalog.hpp"
+#include "client/gateway/gateway_catalog.hpp"
 
 #include <nlohmann/json.hpp>
 #include <stdexcept>

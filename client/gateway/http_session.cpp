@@ -1,10 +1,10 @@
-#include "http_session.hpp"
+#include "client/gateway/http_session.hpp"
 
 #include <boost/beast/websocket.hpp>
 #include <chrono>
 
-#include "web_assets.hpp"
-#include "websocket_session.hpp"
+#include "client/gateway/web_assets.hpp"
+#include "client/gateway/websocket_session.hpp"
 
 namespace flagsim::gateway {
 namespace {

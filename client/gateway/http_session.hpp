@@ -9,7 +9,7 @@
 #include <memory>
 #include <optional>
 
-#include "server_context.hpp"
+#include "client/gateway/server_context.hpp"
 
 namespace flagsim::gateway {
 

@@ -1,4 +1,4 @@
-#include "process_usage.hpp"
+#include "client/gateway/process_usage.hpp"
 
 #include <unistd.h>
 

@@ -1,8 +1,8 @@
-#include "scene_update.hpp"
+#include "client/gateway/scene_update.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include "bus_json.hpp"
+#include "client/gateway/bus_json.hpp"
 
 namespace flagsim::gateway {
 namespace {

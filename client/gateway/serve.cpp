@@ -1,4 +1,4 @@
-#include "serve.hpp"
+#include "client/gateway/serve.hpp"
 
 #include <unistd.h>
 
@@ -7,9 +7,9 @@
 #include <chrono>
 #include <cstdio>
 
-#include "gateway.hpp"
-#include "http_session.hpp"
-#include "server_context.hpp"
+#include "client/gateway/gateway.hpp"
+#include "client/gateway/http_session.hpp"
+#include "client/gateway/server_context.hpp"
 
 namespace flagsim::gateway {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "bus.hpp"
-#include "channels.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
 
 namespace flagsim::gateway {
 

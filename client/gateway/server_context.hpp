@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "access_policy.hpp"
-#include "gateway.hpp"
+#include "client/gateway/access_policy.hpp"
+#include "client/gateway/gateway.hpp"
 
 namespace flagsim::gateway {
 

@@ -1,4 +1,4 @@
-#include "session_recorder.hpp"
+#include "client/gateway/session_recorder.hpp"
 
 #include <sys/stat.h>
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "bus.hpp"
-#include "log_recorder.hpp"
+#include "client/log_recorder.hpp"
+#include "messages/bus.hpp"
 
 namespace flagsim::gateway {
 

@@ -1,4 +1,4 @@
-#include "web_assets.hpp"
+#include "client/gateway/web_assets.hpp"
 
 #include <map>
 #include <string>

@@ -1,4 +1,4 @@
-#include "websocket_session.hpp"
+#include "client/gateway/websocket_session.hpp"
 
 #include <array>
 #include <chrono>

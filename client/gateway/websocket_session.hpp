@@ -15,8 +15,8 @@
 #include <optional>
 #include <string>
 
-#include "client_protocol.hpp"
-#include "server_context.hpp"
+#include "client/gateway/client_protocol.hpp"
+#include "client/gateway/server_context.hpp"
 
 namespace flagsim::gateway {
 

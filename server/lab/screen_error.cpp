@@ -1,4 +1,4 @@
-#include "screen_error.hpp"
+#include "server/lab/screen_error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 // Errors as the viewer sees them: node positions projected through a camera to pixels.
 #pragma once
 
-#include "render/camera.hpp"
-#include "sim/cloth_state.hpp"
+#include "server/render/camera.hpp"
+#include "server/sim/cloth_state.hpp"
 
 namespace flagsim::lab {
 

@@ -1,10 +1,10 @@
-#include "stability.hpp"
+#include "server/lab/stability.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <vector>
 
-#include "sim/cloth_model.hpp"
+#include "server/sim/cloth_model.hpp"
 
 namespace flagsim::lab {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "sim/sim_params.hpp"
-#include "trajectory.hpp"
+#include "server/lab/trajectory.hpp"
+#include "server/sim/sim_params.hpp"
 
 namespace flagsim::lab {
 

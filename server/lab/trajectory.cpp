@@ -1,13 +1,13 @@
-#include "trajectory.hpp"
+#include "server/lab/trajectory.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "cpu_time.hpp"
-#include "sim/cloth_model.hpp"
-#include "sim/forces.hpp"
-#include "sim/integrator.hpp"
+#include "server/lab/cpu_time.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/forces.hpp"
+#include "server/sim/integrator.hpp"
 
 namespace flagsim::lab {
 namespace {

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <functional>
 
-#include "sim/cloth_state.hpp"
-#include "sim/sim_params.hpp"
-#include "sim/wind_field.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/sim_params.hpp"
+#include "server/sim/wind_field.hpp"
 
 namespace flagsim::lab {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "tile_raster.hpp"
+#include "server/render/tile_raster.hpp"
 
 namespace flagsim::render {
 

@@ -1,4 +1,4 @@
-#include "camera.hpp"
+#include "server/render/camera.hpp"
 
 #include <algorithm>
 #include <cmath>

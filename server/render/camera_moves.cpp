@@ -1,4 +1,4 @@
-#include "camera_moves.hpp"
+#include "server/render/camera_moves.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "camera.hpp"
+#include "server/render/camera.hpp"
 
 namespace flagsim::render {
 

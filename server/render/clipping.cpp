@@ -1,4 +1,4 @@
-#include "clipping.hpp"
+#include "server/render/clipping.hpp"
 
 #include <algorithm>
 #include <array>

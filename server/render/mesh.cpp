@@ -1,4 +1,4 @@
-#include "mesh.hpp"
+#include "server/render/mesh.hpp"
 
 #include <Eigen/Geometry>
 #include <cmath>

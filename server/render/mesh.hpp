@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "pattern.hpp"
-#include "shading.hpp"
+#include "server/render/pattern.hpp"
+#include "server/render/shading.hpp"
 
 namespace flagsim::render {
 

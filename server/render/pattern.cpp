@@ -1,4 +1,4 @@
-#include "pattern.hpp"
+#include "server/render/pattern.hpp"
 
 namespace flagsim::render {
 namespace {

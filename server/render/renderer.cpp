@@ -1,10 +1,10 @@
-#include "renderer.hpp"
+#include "server/render/renderer.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
-#include "parallel/worker_pool.hpp"
+#include "server/parallel/worker_pool.hpp"
 
 namespace flagsim::render {
 namespace {

@@ -16,13 +16,13 @@
 #include <cstdint>
 #include <vector>
 
-#include "bresenham.hpp"
-#include "camera.hpp"
-#include "clipping.hpp"
-#include "framebuffer.hpp"
-#include "mesh.hpp"
-#include "tile_raster.hpp"
-#include "triangle_setup.hpp"
+#include "server/render/bresenham.hpp"
+#include "server/render/camera.hpp"
+#include "server/render/clipping.hpp"
+#include "server/render/framebuffer.hpp"
+#include "server/render/mesh.hpp"
+#include "server/render/tile_raster.hpp"
+#include "server/render/triangle_setup.hpp"
 
 namespace flagsim::render {
 

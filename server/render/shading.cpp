@@ -1,4 +1,4 @@
-#include "shading.hpp"
+#include "server/render/shading.hpp"
 
 #include <cmath>
 

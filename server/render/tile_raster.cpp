@@ -1,4 +1,4 @@
-#include "tile_raster.hpp"
+#include "server/render/tile_raster.hpp"
 
 #include <algorithm>
 #include <cstring>

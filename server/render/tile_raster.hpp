@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "framebuffer.hpp"
-#include "mesh.hpp"
-#include "shading_mode.hpp"
-#include "triangle_setup.hpp"
+#include "server/render/framebuffer.hpp"
+#include "server/render/mesh.hpp"
+#include "server/render/shading_mode.hpp"
+#include "server/render/triangle_setup.hpp"
 
 namespace flagsim::render {
 

@@ -1,4 +1,4 @@
-#include "triangle_setup.hpp"
+#include "server/render/triangle_setup.hpp"
 
 #include <algorithm>
 #include <cmath>

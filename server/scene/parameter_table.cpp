@@ -1,11 +1,11 @@
-#include "parameter_table.hpp"
+#include "server/scene/parameter_table.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <type_traits>
 
-#include "sim/integrator.hpp"
-#include "sim/simulation.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim {
 namespace {

@@ -5,11 +5,11 @@
 #include <cstdint>
 #include <string>
 
-#include "render/camera.hpp"
-#include "render/shading_mode.hpp"
-#include "sim/sim_params.hpp"
-#include "sim/timeline.hpp"
-#include "sim/wind_field.hpp"
+#include "server/render/camera.hpp"
+#include "server/render/shading_mode.hpp"
+#include "server/sim/sim_params.hpp"
+#include "server/sim/timeline.hpp"
+#include "server/sim/wind_field.hpp"
 
 namespace flagsim {
 

@@ -1,4 +1,4 @@
-#include "scene_file.hpp"
+#include "server/scene/scene_file.hpp"
 
 #include <toml++/toml.h>
 
@@ -10,9 +10,9 @@
 #include <string_view>
 #include <utility>
 
-#include "parameter_table.hpp"
-#include "render/camera_moves.hpp"
-#include "scene_timeline.hpp"
+#include "server/render/camera_moves.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/scene/scene_timeline.hpp"
 
 namespace flagsim {
 

@@ -1,13 +1,13 @@
-#include "scene_timeline.hpp"
+#include "server/scene/scene_timeline.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 
-#include "parameter_table.hpp"
-#include "render/camera_moves.hpp"
-#include "sim/integrator.hpp"
-#include "sim/simulation.hpp"
+#include "server/render/camera_moves.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim {
 namespace {

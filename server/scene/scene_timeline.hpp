@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "scene.hpp"
-#include "sim/timeline.hpp"
+#include "server/scene/scene.hpp"
+#include "server/sim/timeline.hpp"
 
 namespace flagsim {
 

@@ -1,13 +1,13 @@
-#include "checkpoint_codec.hpp"
+#include "server/service/checkpoint_codec.hpp"
 
 #include <cmath>
 #include <optional>
 
-#include "command_apply.hpp"
-#include "message_builders.hpp"
-#include "parameter_table.hpp"
-#include "render/camera_moves.hpp"
-#include "scene_timeline.hpp"
+#include "server/render/camera_moves.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/scene/scene_timeline.hpp"
+#include "server/service/command_apply.hpp"
+#include "server/service/message_builders.hpp"
 
 namespace flagsim {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "flagsim/checkpoint_t.hpp"
-#include "session.hpp"
+#include "server/service/session.hpp"
 
 namespace flagsim {
 

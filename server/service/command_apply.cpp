@@ -1,8 +1,8 @@
-#include "command_apply.hpp"
+#include "server/service/command_apply.hpp"
 
-#include "checked_decode.hpp"
 #include "flagsim/refresh_request_t.hpp"
-#include "scene_timeline.hpp"
+#include "messages/checked_decode.hpp"
+#include "server/scene/scene_timeline.hpp"
 
 namespace flagsim {
 namespace {

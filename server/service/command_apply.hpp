@@ -12,7 +12,7 @@
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/timeline_key_t.hpp"
 #include "flagsim/wind_command_t.hpp"
-#include "session.hpp"
+#include "server/service/session.hpp"
 
 namespace flagsim {
 

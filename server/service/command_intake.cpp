@@ -1,13 +1,13 @@
-#include "command_intake.hpp"
+#include "server/service/command_intake.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 
-#include "checked_decode.hpp"
-#include "command_apply.hpp"
-#include "scene_timeline.hpp"
-#include "utime.hpp"
+#include "messages/checked_decode.hpp"
+#include "messages/utime.hpp"
+#include "server/scene/scene_timeline.hpp"
+#include "server/service/command_apply.hpp"
 
 namespace flagsim {
 namespace {

@@ -16,18 +16,18 @@
 #include <utility>
 #include <vector>
 
-#include "bus.hpp"
-#include "channels.hpp"
 #include "flagsim/ack_t.hpp"
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "flagsim/wind_command_t.hpp"
-#include "journal.hpp"
-#include "server_presence.hpp"
-#include "server_stats.hpp"
-#include "session.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
+#include "server/service/journal.hpp"
+#include "server/service/server_presence.hpp"
+#include "server/service/server_stats.hpp"
+#include "server/service/session.hpp"
 
 namespace flagsim {
 

@@ -1,6 +1,6 @@
-#include "frame_painter.hpp"
+#include "server/service/frame_painter.hpp"
 
-#include "message_builders.hpp"
+#include "server/service/message_builders.hpp"
 
 namespace flagsim {
 

@@ -11,12 +11,12 @@
 
 #include <vector>
 
-#include "render/camera.hpp"
-#include "render/framebuffer.hpp"
-#include "render/renderer.hpp"
-#include "render/shading_mode.hpp"
-#include "session.hpp"
-#include "tile_stream.hpp"
+#include "server/render/camera.hpp"
+#include "server/render/framebuffer.hpp"
+#include "server/render/renderer.hpp"
+#include "server/render/shading_mode.hpp"
+#include "server/service/session.hpp"
+#include "server/service/tile_stream.hpp"
 
 namespace flagsim {
 

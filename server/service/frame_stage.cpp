@@ -1,8 +1,8 @@
-#include "frame_stage.hpp"
+#include "server/service/frame_stage.hpp"
 
 #include <utility>
 
-#include "utime.hpp"
+#include "messages/utime.hpp"
 
 namespace flagsim {
 

@@ -17,8 +17,8 @@
 #include <optional>
 #include <thread>
 
-#include "frame_painter.hpp"
-#include "tile_stream.hpp"
+#include "server/service/frame_painter.hpp"
+#include "server/service/tile_stream.hpp"
 
 namespace flagsim {
 

@@ -1,4 +1,4 @@
-#include "inputs_log.hpp"
+#include "server/service/inputs_log.hpp"
 
 #include <spdlog/spdlog.h>
 

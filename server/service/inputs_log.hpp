@@ -16,8 +16,8 @@
 #include <memory>
 #include <string>
 
-#include "log_publisher.hpp"
-#include "publisher.hpp"
+#include "messages/publisher.hpp"
+#include "server/service/log_publisher.hpp"
 
 namespace flagsim {
 

@@ -1,8 +1,8 @@
-#include "journal.hpp"
+#include "server/service/journal.hpp"
 
-#include "checkpoint_codec.hpp"
 #include "flagsim/applied_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
+#include "server/service/checkpoint_codec.hpp"
 
 namespace flagsim {
 

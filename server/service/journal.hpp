@@ -16,9 +16,9 @@
 #include <cstdint>
 #include <string>
 
-#include "channels.hpp"
-#include "publisher.hpp"
-#include "session.hpp"
+#include "messages/channels.hpp"
+#include "messages/publisher.hpp"
+#include "server/service/session.hpp"
 
 namespace flagsim {
 

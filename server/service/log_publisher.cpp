@@ -1,4 +1,4 @@
-#include "log_publisher.hpp"
+#include "server/service/log_publisher.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "publish_pacing.hpp"
-#include "publisher.hpp"
+#include "messages/publisher.hpp"
+#include "server/service/publish_pacing.hpp"
 
 namespace lcm {
 class LogFile;

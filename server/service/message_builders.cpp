@@ -1,10 +1,10 @@
-#include "message_builders.hpp"
+#include "server/service/message_builders.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "parameter_table.hpp"
-#include "sim/integrator.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/sim/integrator.hpp"
 
 namespace flagsim {
 

@@ -11,9 +11,9 @@
 #include "flagsim/state_t.hpp"
 #include "flagsim/status_t.hpp"
 #include "flagsim/timeline_t.hpp"
-#include "server_stats.hpp"
-#include "session.hpp"
-#include "tile_stream.hpp"
+#include "server/service/server_stats.hpp"
+#include "server/service/session.hpp"
+#include "server/service/tile_stream.hpp"
 
 namespace flagsim {
 

@@ -1,9 +1,9 @@
-#include "offline_render.hpp"
+#include "server/service/offline_render.hpp"
 
 #include <algorithm>
 #include <utility>
 
-#include "message_builders.hpp"
+#include "server/service/message_builders.hpp"
 
 namespace flagsim {
 

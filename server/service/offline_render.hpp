@@ -17,14 +17,14 @@
 #include <cstdint>
 #include <functional>
 
-#include "channels.hpp"
-#include "frame_painter.hpp"
-#include "journal.hpp"
-#include "log_publisher.hpp"
-#include "scene.hpp"
-#include "session.hpp"
-#include "sim_cadence.hpp"
-#include "tile_stream.hpp"
+#include "messages/channels.hpp"
+#include "server/scene/scene.hpp"
+#include "server/service/frame_painter.hpp"
+#include "server/service/journal.hpp"
+#include "server/service/log_publisher.hpp"
+#include "server/service/session.hpp"
+#include "server/service/sim_cadence.hpp"
+#include "server/service/tile_stream.hpp"
 
 namespace flagsim {
 

@@ -1,9 +1,9 @@
-#include "paced_publisher.hpp"
+#include "server/service/paced_publisher.hpp"
 
 #include <algorithm>
 #include <chrono>
 
-#include "utime.hpp"
+#include "messages/utime.hpp"
 
 namespace flagsim {
 

@@ -12,8 +12,8 @@
 #include <thread>
 #include <vector>
 
-#include "publish_pacing.hpp"
-#include "publisher.hpp"
+#include "messages/publisher.hpp"
+#include "server/service/publish_pacing.hpp"
 
 namespace flagsim {
 

@@ -1,18 +1,18 @@
-#include "replay.hpp"
+#include "server/service/replay.hpp"
 
 #include <cinttypes>
 #include <cstdio>
 #include <memory>
 #include <optional>
 
-#include "channels.hpp"
-#include "checked_decode.hpp"
-#include "checkpoint_codec.hpp"
-#include "command_apply.hpp"
-#include "event_log_reader.hpp"
 #include "flagsim/applied_command_t.hpp"
 #include "flagsim/state_t.hpp"
-#include "journal.hpp"
+#include "messages/channels.hpp"
+#include "messages/checked_decode.hpp"
+#include "messages/event_log_reader.hpp"
+#include "server/service/checkpoint_codec.hpp"
+#include "server/service/command_apply.hpp"
+#include "server/service/journal.hpp"
 
 namespace flagsim {
 namespace {

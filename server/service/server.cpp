@@ -1,16 +1,16 @@
-#include "server.hpp"
+#include "server/service/server.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-#include "message_builders.hpp"
-#include "utime.hpp"
+#include "messages/utime.hpp"
+#include "server/service/message_builders.hpp"
 
 namespace flagsim {
 namespace {
 
-constexpr double kFastBatch = 0.005;     ///< s of the clock stepped back to back in --fast mode
+constexpr double kFastBatch = 0.005;  ///< s of the clock stepped back to back in --fast mode
 /// s of the clock a loop that is behind steps before it turns to the bus and the publications
 /// again: a command (a REFRESH) waits no longer than this for its turn.
 constexpr double kSteppingBatch = 0.01;

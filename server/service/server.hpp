@@ -23,19 +23,19 @@
 #include <memory>
 #include <string>
 
-#include "bus.hpp"
-#include "channels.hpp"
-#include "command_intake.hpp"
-#include "frame_stage.hpp"
-#include "inputs_log.hpp"
-#include "journal.hpp"
-#include "paced_publisher.hpp"
-#include "scene.hpp"
-#include "server_presence.hpp"
-#include "server_stats.hpp"
-#include "session.hpp"
-#include "sim_cadence.hpp"
-#include "utime.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
+#include "messages/utime.hpp"
+#include "server/scene/scene.hpp"
+#include "server/service/command_intake.hpp"
+#include "server/service/frame_stage.hpp"
+#include "server/service/inputs_log.hpp"
+#include "server/service/journal.hpp"
+#include "server/service/paced_publisher.hpp"
+#include "server/service/server_presence.hpp"
+#include "server/service/server_stats.hpp"
+#include "server/service/session.hpp"
+#include "server/service/sim_cadence.hpp"
 
 namespace flagsim {
 

@@ -1,11 +1,11 @@
-#include "server_presence.hpp"
+#include "server/service/server_presence.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include <random>
 
-#include "checked_decode.hpp"
 #include "flagsim/status_t.hpp"
+#include "messages/checked_decode.hpp"
 
 namespace flagsim {
 namespace {

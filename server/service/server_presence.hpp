@@ -10,9 +10,9 @@
 #include <functional>
 #include <map>
 
-#include "bus.hpp"
-#include "channels.hpp"
-#include "utime.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
+#include "messages/utime.hpp"
 
 namespace flagsim {
 

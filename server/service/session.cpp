@@ -1,10 +1,10 @@
-#include "session.hpp"
+#include "server/service/session.hpp"
 
 #include <algorithm>
 #include <utility>
 
-#include "parameter_table.hpp"
-#include "scene_timeline.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/scene/scene_timeline.hpp"
 
 namespace flagsim {
 namespace {

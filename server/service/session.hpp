@@ -19,9 +19,9 @@
 #include <utility>
 #include <vector>
 
-#include "render/camera_moves.hpp"
-#include "scene.hpp"
-#include "sim/simulation.hpp"
+#include "server/render/camera_moves.hpp"
+#include "server/scene/scene.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim {
 

@@ -1,4 +1,4 @@
-#include "tile_stream.hpp"
+#include "server/service/tile_stream.hpp"
 
 #include <xxhash.h>
 #include <zstd.h>
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <memory>
 
-#include "parallel/worker_pool.hpp"
-#include "tile_prediction.hpp"
+#include "messages/tile_prediction.hpp"
+#include "server/parallel/worker_pool.hpp"
 
 namespace flagsim {
 namespace {

@@ -18,7 +18,7 @@
 
 #include "flagsim/frame_t.hpp"
 #include "flagsim/tile_t.hpp"
-#include "render/framebuffer.hpp"
+#include "server/render/framebuffer.hpp"
 
 namespace flagsim {
 

@@ -1,4 +1,4 @@
-#include "cloth_mesh.hpp"
+#include "server/sim/cloth_mesh.hpp"
 
 #include <cstddef>
 

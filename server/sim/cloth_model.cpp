@@ -1,10 +1,10 @@
-#include "cloth_model.hpp"
+#include "server/sim/cloth_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "rest_imperfection.hpp"
+#include "server/sim/rest_imperfection.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim_params.hpp"
+#include "server/sim/sim_params.hpp"
 
 namespace flagsim::sim {
 

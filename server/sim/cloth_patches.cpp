@@ -1,4 +1,4 @@
-#include "cloth_patches.hpp"
+#include "server/sim/cloth_patches.hpp"
 
 #include <algorithm>
 #include <cstdint>

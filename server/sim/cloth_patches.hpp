@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "cloth_mesh.hpp"
+#include "server/sim/cloth_mesh.hpp"
 
 namespace flagsim::sim {
 

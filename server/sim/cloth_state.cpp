@@ -1,4 +1,4 @@
-#include "cloth_state.hpp"
+#include "server/sim/cloth_state.hpp"
 
 #include <xxhash.h>
 

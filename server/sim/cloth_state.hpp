@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cloth_model.hpp"
+#include "server/sim/cloth_model.hpp"
 
 namespace flagsim::sim {
 

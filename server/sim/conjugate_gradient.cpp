@@ -1,9 +1,9 @@
-#include "conjugate_gradient.hpp"
+#include "server/sim/conjugate_gradient.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "parallel/worker_pool.hpp"
+#include "server/parallel/worker_pool.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -11,8 +11,8 @@
 
 #include <vector>
 
-#include "node_vectors.hpp"
-#include "spring_jacobian.hpp"
+#include "server/sim/node_vectors.hpp"
+#include "server/sim/spring_jacobian.hpp"
 
 namespace flagsim::sim {
 

@@ -1,4 +1,4 @@
-#include "control_laws.hpp"
+#include "server/sim/control_laws.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "vec3.hpp"
+#include "server/sim/vec3.hpp"
 
 namespace flagsim::sim {
 

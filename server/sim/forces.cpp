@@ -1,11 +1,11 @@
-#include "forces.hpp"
+#include "server/sim/forces.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
-#include "parallel/worker_pool.hpp"
+#include "server/parallel/worker_pool.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -13,10 +13,10 @@
 #include <functional>
 #include <vector>
 
-#include "cloth_model.hpp"
-#include "cloth_state.hpp"
-#include "sim_params.hpp"
-#include "wind_field.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/sim_params.hpp"
+#include "server/sim/wind_field.hpp"
 
 namespace flagsim::sim {
 

@@ -8,10 +8,10 @@
 // Order 1; on linear springs unconditionally stable, and it damps every mode, the stiffest most.
 #include <limits>
 
-#include "conjugate_gradient.hpp"
-#include "integrator.hpp"
-#include "parallel/worker_pool.hpp"
-#include "spring_jacobian.hpp"
+#include "server/parallel/worker_pool.hpp"
+#include "server/sim/conjugate_gradient.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/spring_jacobian.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "integrator.hpp"
+#include "server/sim/integrator.hpp"
 
 namespace flagsim::sim {
 

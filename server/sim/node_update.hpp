@@ -9,8 +9,8 @@
 
 #include <vector>
 
-#include "cloth_state.hpp"
-#include "parallel/worker_pool.hpp"
+#include "server/parallel/worker_pool.hpp"
+#include "server/sim/cloth_state.hpp"
 
 namespace flagsim::sim {
 

@@ -1,4 +1,4 @@
-#include "obstacles.hpp"
+#include "server/sim/obstacles.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,9 +7,9 @@
 // sliding speed: |v_t| <- max(0, |v_t| - mu |dv_n|). Nodes pinned to the pole are left alone.
 #pragma once
 
-#include "cloth_model.hpp"
-#include "cloth_state.hpp"
-#include "sim_params.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/sim_params.hpp"
 
 namespace flagsim::sim {
 

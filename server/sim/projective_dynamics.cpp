@@ -50,11 +50,11 @@
 #include <cmath>
 #include <limits>
 
-#include "integrator.hpp"
-#include "node_update.hpp"
-#include "parallel/worker_pool.hpp"
-#include "spring_laplacian.hpp"
-#include "spring_runs.hpp"
+#include "server/parallel/worker_pool.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/node_update.hpp"
+#include "server/sim/spring_laplacian.hpp"
+#include "server/sim/spring_runs.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "rest_imperfection.hpp"
+#include "server/sim/rest_imperfection.hpp"
 
 #include <algorithm>
 #include <array>

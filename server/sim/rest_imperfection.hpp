@@ -13,8 +13,8 @@
 // The result depends on the parameters alone: the same bits on every replay and thread count.
 #pragma once
 
-#include "cloth_model.hpp"
-#include "sim_params.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/sim_params.hpp"
 
 namespace flagsim::sim {
 

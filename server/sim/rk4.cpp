@@ -11,9 +11,9 @@
 #include <cmath>
 #include <limits>
 
-#include "integrator.hpp"
-#include "node_update.hpp"
-#include "node_vectors.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/node_update.hpp"
+#include "server/sim/node_vectors.hpp"
 
 namespace flagsim::sim {
 namespace {

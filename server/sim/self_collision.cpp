@@ -1,4 +1,4 @@
-#include "self_collision.hpp"
+#include "server/sim/self_collision.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -44,13 +44,13 @@
 #include <array>
 #include <vector>
 
-#include "cloth_mesh.hpp"
-#include "cloth_model.hpp"
-#include "cloth_patches.hpp"
-#include "cloth_state.hpp"
-#include "collision_geometry.hpp"
-#include "obstacles.hpp"
-#include "sim_params.hpp"
+#include "server/sim/cloth_mesh.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/cloth_patches.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/collision_geometry.hpp"
+#include "server/sim/obstacles.hpp"
+#include "server/sim/sim_params.hpp"
 
 namespace flagsim::sim {
 

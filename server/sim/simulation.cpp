@@ -1,4 +1,4 @@
-#include "simulation.hpp"
+#include "server/sim/simulation.hpp"
 
 #include <algorithm>
 #include <cmath>

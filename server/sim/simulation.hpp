@@ -28,13 +28,13 @@
 #include <string>
 #include <vector>
 
-#include "cloth_model.hpp"
-#include "cloth_state.hpp"
-#include "forces.hpp"
-#include "integrator.hpp"
-#include "self_collision.hpp"
-#include "sim_params.hpp"
-#include "wind_field.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/forces.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/self_collision.hpp"
+#include "server/sim/sim_params.hpp"
+#include "server/sim/wind_field.hpp"
 
 namespace flagsim::sim {
 

@@ -1,10 +1,10 @@
-#include "spring_jacobian.hpp"
+#include "server/sim/spring_jacobian.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "parallel/worker_pool.hpp"
-#include "spring_runs.hpp"
+#include "server/parallel/worker_pool.hpp"
+#include "server/sim/spring_runs.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -29,10 +29,10 @@
 
 #include <vector>
 
-#include "cloth_model.hpp"
-#include "cloth_state.hpp"
-#include "forces.hpp"
-#include "node_vectors.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/forces.hpp"
+#include "server/sim/node_vectors.hpp"
 
 namespace flagsim::sim {
 

@@ -1,6 +1,6 @@
-#include "spring_laplacian.hpp"
+#include "server/sim/spring_laplacian.hpp"
 
-#include "parallel/worker_pool.hpp"
+#include "server/parallel/worker_pool.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -12,8 +12,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
-#include "cloth_model.hpp"
-#include "node_vectors.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/node_vectors.hpp"
 
 namespace flagsim::sim {
 

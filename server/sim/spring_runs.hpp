@@ -8,7 +8,7 @@
 // a gather that follows them sums every node's springs in one fixed order.
 #pragma once
 
-#include "cloth_model.hpp"
+#include "server/sim/cloth_model.hpp"
 
 namespace flagsim::sim {
 

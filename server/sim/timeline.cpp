@@ -1,4 +1,4 @@
-#include "timeline.hpp"
+#include "server/sim/timeline.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
-#include "control_laws.hpp"
-#include "wind_field.hpp"
+#include "server/sim/control_laws.hpp"
+#include "server/sim/wind_field.hpp"
 
 namespace flagsim::sim {
 

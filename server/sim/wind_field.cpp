@@ -1,4 +1,4 @@
-#include "wind_field.hpp"
+#include "server/sim/wind_field.hpp"
 
 #include <cmath>
 

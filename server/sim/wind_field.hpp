@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "vec3.hpp"
+#include "server/sim/vec3.hpp"
 
 namespace flagsim::sim {
 

@@ -20,8 +20,8 @@
 #include <cmath>
 #include <limits>
 
-#include "integrator.hpp"
-#include "node_update.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/node_update.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "frame_output.hpp"
+#include "client/frame_output.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "png_file.hpp"
-#include "video_output.hpp"
+#include "client/png_file.hpp"
+#include "client/video_output.hpp"
 
 namespace flagsim {
 namespace {

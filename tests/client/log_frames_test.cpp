@@ -1,4 +1,4 @@
-#include "log_frames.hpp"
+#include "client/log_frames.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "log_publisher.hpp"
-#include "message_builders.hpp"
-#include "tile_stream.hpp"
+#include "server/service/log_publisher.hpp"
+#include "server/service/message_builders.hpp"
+#include "server/service/tile_stream.hpp"
 
 namespace flagsim {
 namespace {

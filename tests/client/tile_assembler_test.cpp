@@ -1,10 +1,10 @@
-#include "tile_assembler.hpp"
+#include "client/tile_assembler.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "tile_stream.hpp"
+#include "server/service/tile_stream.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,10 +1,10 @@
-#include "checked_decode.hpp"
+#include "messages/checked_decode.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "message_fixtures.hpp"
+#include "tests/messages/message_fixtures.hpp"
 
 namespace flagsim::wire {
 namespace {

@@ -1,4 +1,4 @@
-#include "tile_prediction.hpp"
+#include "messages/tile_prediction.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-#include "wire_schema.hpp"
+#include "messages/wire_schema.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "message_fixtures.hpp"
+#include "tests/messages/message_fixtures.hpp"
 
 namespace flagsim::wire {
 namespace {

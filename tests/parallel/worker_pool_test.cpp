@@ -1,4 +1,4 @@
-#include "parallel/worker_pool.hpp"
+#include "server/parallel/worker_pool.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-#include "render/bresenham.hpp"
+#include "server/render/bresenham.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "tile_drawing.hpp"
+#include "tests/render/tile_drawing.hpp"
 
 namespace flagsim::render {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/camera_moves.hpp"
+#include "server/render/camera_moves.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "render/camera.hpp"
+#include "server/render/camera.hpp"
 
 #include <gtest/gtest.h>
 

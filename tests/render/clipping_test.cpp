@@ -1,4 +1,4 @@
-#include "render/clipping.hpp"
+#include "server/render/clipping.hpp"
 
 #include <gtest/gtest.h>
 

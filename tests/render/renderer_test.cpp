@@ -1,4 +1,4 @@
-#include "render/renderer.hpp"
+#include "server/render/renderer.hpp"
 
 #include <gtest/gtest.h>
 

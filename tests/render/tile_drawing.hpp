@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "render/tile_raster.hpp"
+#include "server/render/tile_raster.hpp"
 
 namespace flagsim::render {
 

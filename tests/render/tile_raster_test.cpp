@@ -1,4 +1,4 @@
-#include "render/tile_raster.hpp"
+#include "server/render/tile_raster.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "tile_drawing.hpp"
+#include "tests/render/tile_drawing.hpp"
 
 namespace flagsim::render {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/triangle_setup.hpp"
+#include "server/render/triangle_setup.hpp"
 
 #include <gtest/gtest.h>
 

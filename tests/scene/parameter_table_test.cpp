@@ -1,4 +1,4 @@
-#include "parameter_table.hpp"
+#include "server/scene/parameter_table.hpp"
 
 #include <gtest/gtest.h>
 

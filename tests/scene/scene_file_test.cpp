@@ -1,8 +1,8 @@
-#include "scene_file.hpp"
+#include "server/scene/scene_file.hpp"
 
 #include <gtest/gtest.h>
 
-#include "scene_timeline.hpp"
+#include "server/scene/scene_timeline.hpp"
 
 namespace flagsim {
 namespace {

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scene_file.hpp"
-#include "sim/simulation.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim {
 namespace {

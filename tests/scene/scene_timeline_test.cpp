@@ -1,12 +1,12 @@
-#include "scene_timeline.hpp"
+#include "server/scene/scene_timeline.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "parameter_table.hpp"
-#include "sim/simulation.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,15 +1,15 @@
 // A session snapshot through checkpoint_t and back: the resumed session takes the original's
 // steps and draws its frames bit for bit; hostile checkpoints are refused with the field named.
-#include "checkpoint_codec.hpp"
+#include "server/service/checkpoint_codec.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "checked_decode.hpp"
-#include "frame_painter.hpp"
-#include "publisher.hpp"
+#include "messages/checked_decode.hpp"
+#include "messages/publisher.hpp"
+#include "server/service/frame_painter.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,16 +1,16 @@
 // The server's command side on an in-process bus (memq://): answers, validation, retries, and
 // hostile bytes on every command channel.
-#include "command_intake.hpp"
+#include "server/service/command_intake.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "command_client.hpp"
-#include "messages/message_fixtures.hpp"
-#include "parameter_table.hpp"
-#include "server.hpp"
+#include "client/command_client.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/service/server.hpp"
+#include "tests/messages/message_fixtures.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,7 +1,7 @@
 // flagd's own record of its inputs: a server on an in-process bus takes commands while it writes
 // the log, and `flagd replay`'s engine steps the log again to the same hashes; a log that cannot
 // be written ends, and the server and the bus go on.
-#include "inputs_log.hpp"
+#include "server/service/inputs_log.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,12 +10,12 @@
 #include <map>
 #include <string>
 
-#include "command_client.hpp"
-#include "log_fixtures.hpp"
-#include "messages/message_fixtures.hpp"
-#include "replay.hpp"
-#include "server.hpp"
-#include "utime.hpp"
+#include "client/command_client.hpp"
+#include "messages/utime.hpp"
+#include "server/service/replay.hpp"
+#include "server/service/server.hpp"
+#include "tests/messages/message_fixtures.hpp"
+#include "tests/service/log_fixtures.hpp"
 
 namespace flagsim {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "scene.hpp"
+#include "server/scene/scene.hpp"
 
 namespace flagsim::testing {
 

@@ -1,4 +1,4 @@
-#include "log_publisher.hpp"
+#include "server/service/log_publisher.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "event_log_reader.hpp"
-#include "log_fixtures.hpp"
+#include "messages/event_log_reader.hpp"
+#include "tests/service/log_fixtures.hpp"
 
 namespace flagsim {
 namespace {

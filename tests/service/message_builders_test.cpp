@@ -1,13 +1,13 @@
-#include "message_builders.hpp"
+#include "server/service/message_builders.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "checked_decode.hpp"
-#include "frame_painter.hpp"
-#include "messages/message_fixtures.hpp"
-#include "parameter_table.hpp"
+#include "messages/checked_decode.hpp"
+#include "server/scene/parameter_table.hpp"
+#include "server/service/frame_painter.hpp"
+#include "tests/messages/message_fixtures.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,4 +1,4 @@
-#include "offline_render.hpp"
+#include "server/service/offline_render.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "checked_decode.hpp"
-#include "event_log_reader.hpp"
+#include "client/tile_assembler.hpp"
 #include "flagsim/state_t.hpp"
-#include "tile_assembler.hpp"
+#include "messages/checked_decode.hpp"
+#include "messages/event_log_reader.hpp"
 
 namespace flagsim {
 namespace {

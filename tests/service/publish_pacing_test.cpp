@@ -1,4 +1,4 @@
-#include "publish_pacing.hpp"
+#include "server/service/publish_pacing.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // each boundary, commands as they came): every hash equal when nothing differs, the first
 // difference found when something does, a log recorded from mid-session, a log without a
 // checkpoint, a log cut short.
-#include "replay.hpp"
+#include "server/service/replay.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "channels.hpp"
-#include "command_apply.hpp"
-#include "journal.hpp"
-#include "log_fixtures.hpp"
-#include "log_publisher.hpp"
-#include "message_builders.hpp"
+#include "messages/channels.hpp"
+#include "server/service/command_apply.hpp"
+#include "server/service/journal.hpp"
+#include "server/service/log_publisher.hpp"
+#include "server/service/message_builders.hpp"
+#include "tests/service/log_fixtures.hpp"
 
 namespace flagsim {
 namespace {

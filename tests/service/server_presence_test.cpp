@@ -1,17 +1,17 @@
 // Telling servers on one prefix apart: the ids in STATUS, STATE and ACK, and the count of other
 // servers heard, on an in-process bus (memq://) with a clock the test moves.
-#include "server_presence.hpp"
+#include "server/service/server_presence.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <atomic>
 
-#include "command_client.hpp"
+#include "client/command_client.hpp"
 #include "flagsim/state_t.hpp"
 #include "flagsim/status_t.hpp"
-#include "messages/message_fixtures.hpp"
-#include "server.hpp"
+#include "server/service/server.hpp"
+#include "tests/messages/message_fixtures.hpp"
 
 namespace flagsim {
 namespace {

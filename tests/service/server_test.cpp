@@ -1,6 +1,6 @@
 // The server's loop on a simulated clock (memq://): it steps as far as the clock has moved, draws
 // every frame that falls due or counts it skipped, and answers a REFRESH with a keyframe.
-#include "server.hpp"
+#include "server/service/server.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <chrono>
 #include <thread>
 
-#include "command_client.hpp"
+#include "client/command_client.hpp"
 #include "flagsim/frame_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
 

@@ -1,15 +1,15 @@
 // The session under a keyframe timeline: controls applied at step boundaries in simulated time,
 // substeps per segment, edits during play, rejections that change nothing, and the same states
 // at any thread count.
-#include "session.hpp"
+#include "server/service/session.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "scene_timeline.hpp"
-#include "sim/simulation.hpp"
+#include "server/scene/scene_timeline.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim {
 namespace {

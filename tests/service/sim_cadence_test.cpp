@@ -1,4 +1,4 @@
-#include "sim_cadence.hpp"
+#include "server/service/sim_cadence.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-#include "tile_stream.hpp"
+#include "server/service/tile_stream.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "messages/message_fixtures.hpp"
+#include "tests/messages/message_fixtures.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,11 +1,11 @@
-#include "sim/cloth_model.hpp"
+#include "server/sim/cloth_model.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numeric>
 
-#include "lab/stability.hpp"
+#include "server/lab/stability.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/cloth_state.hpp"
+#include "server/sim/cloth_state.hpp"
 
 #include <gtest/gtest.h>
 #include <xxhash.h>

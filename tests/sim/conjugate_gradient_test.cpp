@@ -1,11 +1,11 @@
-#include "sim/conjugate_gradient.hpp"
+#include "server/sim/conjugate_gradient.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "sim_test_util.hpp"
+#include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
 namespace {

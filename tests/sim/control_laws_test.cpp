@@ -1,4 +1,4 @@
-#include "sim/control_laws.hpp"
+#include "server/sim/control_laws.hpp"
 
 #include <gtest/gtest.h>
 

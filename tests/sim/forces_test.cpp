@@ -1,10 +1,10 @@
-#include "sim/forces.hpp"
+#include "server/sim/forces.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "sim_test_util.hpp"
+#include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -1,6 +1,6 @@
 // Every integrator MakeIntegrator makes: its order of convergence, its stability limit, pinned
 // nodes, thread-count invariance.
-#include "sim/integrator.hpp"
+#include "server/sim/integrator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <map>
 #include <vector>
 
-#include "lab/trajectory.hpp"
-#include "sim/simulation.hpp"
-#include "sim_test_util.hpp"
+#include "server/lab/trajectory.hpp"
+#include "server/sim/simulation.hpp"
+#include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "sim/integrator.hpp"
-#include "sim/simulation.hpp"
-#include "sim_test_util.hpp"
+#include "server/sim/integrator.hpp"
+#include "server/sim/simulation.hpp"
+#include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -1,11 +1,11 @@
-#include "sim/rest_imperfection.hpp"
+#include "server/sim/rest_imperfection.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "sim/cloth_model.hpp"
+#include "server/sim/cloth_model.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -1,13 +1,13 @@
-#include "sim/self_collision.hpp"
+#include "server/sim/self_collision.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "lab/triangle_crossings.hpp"
-#include "scene/scene_file.hpp"
-#include "sim/simulation.hpp"
+#include "server/lab/triangle_crossings.hpp"
+#include "server/scene/scene_file.hpp"
+#include "server/sim/simulation.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -4,10 +4,10 @@
 #include <array>
 #include <cmath>
 
-#include "sim/cloth_model.hpp"
-#include "sim/cloth_state.hpp"
-#include "sim/sim_params.hpp"
-#include "sim/wind_field.hpp"
+#include "server/sim/cloth_model.hpp"
+#include "server/sim/cloth_state.hpp"
+#include "server/sim/sim_params.hpp"
+#include "server/sim/wind_field.hpp"
 
 namespace flagsim::sim::testing {
 

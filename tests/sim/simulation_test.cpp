@@ -1,8 +1,8 @@
-#include "sim/simulation.hpp"
+#include "server/sim/simulation.hpp"
 
 #include <gtest/gtest.h>
 
-#include "sim_test_util.hpp"
+#include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
 namespace {

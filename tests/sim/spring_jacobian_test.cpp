@@ -1,11 +1,11 @@
-#include "sim/spring_jacobian.hpp"
+#include "server/sim/spring_jacobian.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <random>
 
-#include "sim_test_util.hpp"
+#include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -4,8 +4,8 @@
 #include <random>
 #include <vector>
 
-#include "sim/integrator.hpp"
-#include "sim_test_util.hpp"
+#include "server/sim/integrator.hpp"
+#include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/timeline.hpp"
+#include "server/sim/timeline.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "sim/wind_field.hpp"
+#include "server/sim/wind_field.hpp"
 
 #include <gtest/gtest.h>
 

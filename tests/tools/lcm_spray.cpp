@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "bus.hpp"
+#include "messages/bus.hpp"
 
 int main(int argc, char** argv) {
   if (argc < 4) {

@@ -1,6 +1,6 @@
 // Who may use the gateway: the token in each of its three forms, loopback's Host rule against
 // DNS rebinding, and the Origin rule against other sites' pages.
-#include "gateway/access_policy.hpp"
+#include "client/gateway/access_policy.hpp"
 
 #include <gtest/gtest.h>
 

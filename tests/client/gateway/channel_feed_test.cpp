@@ -1,6 +1,6 @@
 // A channel's feed: latest wins for a slow reader, lazily made payloads are made once, and a
 // deeper feed (the ACKs) gives a reader every message it kept.
-#include "gateway/channel_feed.hpp"
+#include "client/gateway/channel_feed.hpp"
 
 #include <gtest/gtest.h>
 

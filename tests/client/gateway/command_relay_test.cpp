@@ -1,11 +1,11 @@
 // Commands without blocking: resent with one sequence number until answered, answered once,
 // and timed out on the caller's clock.
-#include "gateway/command_relay.hpp"
+#include "client/gateway/command_relay.hpp"
 
 #include <gtest/gtest.h>
 
-#include "checked_decode.hpp"
 #include "flagsim/wind_command_t.hpp"
+#include "messages/checked_decode.hpp"
 
 namespace flagsim::gateway {
 namespace {

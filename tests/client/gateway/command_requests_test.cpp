@@ -1,6 +1,6 @@
 // JSON requests into commands: each field where it belongs, degrees into radians, and a
 // request of the wrong shape refused with the field's name.
-#include "gateway/command_requests.hpp"
+#include "client/gateway/command_requests.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The protocol's binary frames: the server's laid out as the spec says, the client's parsed
 // with every length checked, whatever bytes arrive.
-#include "gateway/foxglove_wire.hpp"
+#include "client/gateway/foxglove_wire.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // The frame mirror: what it sends each client takes that client exactly to the server's newest
 // frame, however many frames it skipped, with only the tiles that differ.
-#include "gateway/frame_mirror.hpp"
+#include "client/gateway/frame_mirror.hpp"
 
 #include <gtest/gtest.h>
 
-#include "tile_stream.hpp"
-#include "tile_update_reader.hpp"
+#include "server/service/tile_stream.hpp"
+#include "tests/client/gateway/tile_update_reader.hpp"
 
 namespace flagsim::gateway {
 namespace {

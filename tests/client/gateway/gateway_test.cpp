@@ -1,16 +1,16 @@
 // The gateway with a real flagd server on an in-process bus (memq://) and clients without
 // sockets: what they are sent, how their requests reach the server, and what bad requests do.
-#include "gateway/gateway.hpp"
+#include "client/gateway/gateway.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <random>
 
-#include "event_log_reader.hpp"
-#include "gateway/foxglove_wire.hpp"
-#include "server.hpp"
-#include "tile_update_reader.hpp"
+#include "client/gateway/foxglove_wire.hpp"
+#include "messages/event_log_reader.hpp"
+#include "server/service/server.hpp"
+#include "tests/client/gateway/tile_update_reader.hpp"
 
 namespace flagsim::gateway {
 namespace {
