@@ -110,7 +110,11 @@ int WorkerPool::Offer(Loop* loop) {
 // cleared is counted in visitors_ until it has either entered the loop or turned away.
 void WorkerPool::Withdraw(int slot) {
   offered_[slot].store(nullptr);
-  while (visitors_.load() != 0) Pause();
+  // A visitor is a few instructions from done, unless the kernel took its core: then yield.
+  for (int polls = 1; visitors_.load() != 0; ++polls) {
+    Pause();
+    if (polls % 64 == 0) std::this_thread::yield();
+  }
 }
 
 void WorkerPool::AddWorkers(int wanted) {
