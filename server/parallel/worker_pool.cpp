@@ -97,9 +97,12 @@ int WorkerPool::Offer(Loop* loop) {
     Loop* empty = nullptr;
     if (!offered_[slot].compare_exchange_strong(empty, loop)) continue;
     posted_.fetch_add(1);
-    if (sleeping_workers_.load() > 0) {
+    // Wake sleepers only for the helpers that the polling workers do not already give: extra
+    // workers woken for nothing would take the cores from the ones at work.
+    const int short_of = loop->participants - 1 - polling_workers_.load();
+    if (short_of > 0 && sleeping_workers_.load() > 0) {
       const std::lock_guard<std::mutex> lock(mutex_);
-      wake_.notify_all();
+      for (int k = 0; k < short_of; ++k) wake_.notify_one();
     }
     return slot;
   }
@@ -148,7 +151,10 @@ void WorkerPool::Work() {
     int participant = 0;
     Loop* loop = nullptr;
     const auto joined = [&] { return (loop = TryJoin(&participant)) != nullptr || stopping_.load(); };
-    if (!PollFor(kPollSeconds, joined)) Sleep(joined);
+    polling_workers_.fetch_add(1);
+    const bool found = PollFor(kPollSeconds, joined);
+    polling_workers_.fetch_sub(1);
+    if (!found) Sleep(joined);
     if (loop == nullptr) continue;
     Drain(loop, participant);
     Leave(loop);

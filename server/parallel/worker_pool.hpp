@@ -68,6 +68,7 @@ class WorkerPool {
   alignas(64) std::atomic<Loop*> offered_[kSlots] = {};  ///< loops that take helpers
   std::atomic<int> visitors_{0};          ///< workers between reading a slot and entering its loop
   std::atomic<unsigned> posted_{0};       ///< offers so far: a sleeping worker waits for it to move
+  std::atomic<int> polling_workers_{0};   ///< idle and polling: Offer wakes sleepers only beyond them
   std::atomic<int> sleeping_workers_{0};  ///< on wake_: Offer notifies only if some are
   std::atomic<int> sleeping_callers_{0};  ///< on left_: Leave notifies only if some are
   std::atomic<int> worker_count_{0};
