@@ -187,9 +187,8 @@ template <typename Joined>
 void WorkerPool::Sleep(const Joined& joined) {
   std::unique_lock<std::mutex> lock(mutex_);
   sleeping_workers_.fetch_add(1);  // before looking: Offer sees it, or we see the offer
-  while (!joined()) {
-    const unsigned seen = posted_.load();
-    if (joined()) break;
+  // The offers counted before each look: a later one moves posted_ and ends the wait.
+  for (unsigned seen = posted_.load(); !joined(); seen = posted_.load()) {
     wake_.wait(lock, [&] { return posted_.load() != seen; });
   }
   sleeping_workers_.fetch_sub(1);

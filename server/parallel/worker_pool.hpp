@@ -8,15 +8,16 @@
 // Each thread starts on a contiguous share of the indices of its own and claims them one at a
 // time; a thread out of work takes the next unclaimed index of another's share. So a worker that
 // the kernel takes off its core (a busy neighbour process, the server's own publisher) holds back
-// one index, not its whole share, and a thread that joins late finds its share done for it. Results do not
-// depend on who ran what: a body writes only what its index owns, so a loop gives the same bits at any thread
-// count.
+// one index, not its whole share, and a thread that joins late finds its share done for it.
+// Results do not depend on who ran what: a body writes only what its index owns, so a loop gives
+// the same bits at any thread count.
 //
 // The caller always works through the indices itself, so a loop finishes even when every worker
 // is busy elsewhere (and a body may run a loop of its own). Idle workers, and a caller waiting for
 // a helper's last index, poll for kPollSeconds, yielding the core every few polls, then sleep:
 // they never hold a core that another thread wants, and a loop that follows another within
-// microseconds (a substep's stages) still finds the workers awake.
+// microseconds (a substep's stages) still finds the workers awake. An offer wakes sleeping
+// workers only for the helpers that the polling ones do not already give.
 #pragma once
 
 #include <atomic>

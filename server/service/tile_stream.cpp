@@ -46,17 +46,14 @@ tile_t EncodeTile(const render::Framebuffer& image, const TileBox& box) {
   return tile;
 }
 
-/// XXH3-64 of the tile's rows copied out back to back into `scratch`: one pass of the one-shot
-/// hash over 12 KB instead of the streaming hash fed 192-byte rows (with the hash inlined, a
-/// frame's encoding takes about half the time: bench/tile_bench.cpp, docs/benchmarks.md).
-uint64_t TileHash(const render::Framebuffer& image, const TileBox& box, std::vector<uint8_t>* scratch) {
-  const size_t row_bytes = size_t(box.width) * 3;
-  scratch->resize(row_bytes * box.height);
-  for (int row = 0; row < box.height; ++row) {
-    const uint8_t* source = image.Pixel(box.x, box.y + row);
-    std::copy(source, source + row_bytes, scratch->data() + row * row_bytes);
-  }
-  return XXH3_64bits(scratch->data(), scratch->size());
+/// XXH3-64 of the tile's rows copied out back to back (TilePixels, into this thread's kept
+/// buffer): one pass of the one-shot hash over the tile instead of the streaming hash fed
+/// 192-byte rows (with the hash inlined, a frame's encoding takes about half the time:
+/// bench/tile_bench.cpp, docs/benchmarks.md).
+uint64_t TileHash(const render::Framebuffer& image, const TileBox& box) {
+  thread_local std::vector<uint8_t> pixels;
+  TilePixels(image, box, &pixels);
+  return XXH3_64bits(pixels.data(), pixels.size());
 }
 
 }  // namespace
@@ -116,10 +113,7 @@ void TileStream::Resize(int width, int height) {
 std::vector<uint64_t> TileStream::HashTiles(const render::Framebuffer& image, int threads) const {
   const int tiles = tiles_x_ * tiles_y_;
   std::vector<uint64_t> hashes(tiles);
-  std::vector<std::vector<uint8_t>> scratch(std::max(1, threads));  // one per thread
-  ParallelForEachParticipant(tiles, threads, [&](int t, int participant) {
-    hashes[t] = TileHash(image, TileRect(t), &scratch[participant]);
-  });
+  ParallelFor(tiles, threads, [&](int t) { hashes[t] = TileHash(image, TileRect(t)); });
   return hashes;
 }
 
