@@ -12,7 +12,7 @@
 // and the stepping's thread CPU time is summed: run_ms = CPU time / steps, the cost of exactly
 // the motion whose crossings were counted.
 //
-// The timing: each simulation's state at the end of the run (a clean snapshot) is stepped K steps
+// The timing: each simulation's state at the end of the run (a snapshot) is stepped K steps
 // (K fills about kTimedSeconds of CPU time with self-collision off), N times, off and on taking
 // turns and the one to go first alternating, every repetition from the same snapshot:
 //   ms_off, ms_on = medians over repetitions of CPU ms per step
@@ -157,7 +157,7 @@ void Measure(const Case& one, const Options& options, Table* table) {
   RunBoth(seconds, steps_per_state, sim::BuildClothMesh(params.cols, params.rows), &off, &on);
   const double run_off = off.cpu_seconds / off.steps, run_on = on.cpu_seconds / on.steps;
   const int timed_steps = std::max(kLeastTimedSteps, int(std::ceil(kTimedSeconds / run_off)));
-  const Timing timing = TimeInTurns(off.simulation->CleanSnapshot(), on.simulation->CleanSnapshot(),
+  const Timing timing = TimeInTurns(off.simulation->Snapshot(), on.simulation->Snapshot(),
                                     timed_steps, options.repetitions);
   const double simulated = on.simulation->state().time, steps = double(on.steps);
   table->Add({one.preset, std::to_string(params.cols), std::to_string(params.rows),

@@ -276,6 +276,73 @@ std::string ReadState(const checkpoint_t& message, int nodes, sim::ClothState<fl
   return "";
 }
 
+node_vectors_t NodeVectorsMessage(const std::vector<float>& x, const std::vector<float>& y,
+                                  const std::vector<float>& z) {
+  node_vectors_t message{};
+  message.num_nodes = static_cast<int32_t>(x.size());
+  message.x = x;
+  message.y = y;
+  message.z = z;
+  return message;
+}
+
+/// A vector per node, or none where `may_be_none`: the grid's count, every value finite.
+std::string ReadNodeVectors(const node_vectors_t& message, const std::string& field, int nodes,
+                            bool may_be_none, sim::NodeVectors<float>* out) {
+  const bool none = message.num_nodes == 0 && may_be_none;
+  const size_t size = none ? 0 : size_t(nodes);
+  if ((!none && message.num_nodes != nodes) || message.x.size() != size || message.y.size() != size ||
+      message.z.size() != size) {
+    return field + ".num_nodes: " + std::to_string(message.num_nodes) + "; allowed " +
+           (may_be_none ? "0 or " : "") + std::to_string(nodes) + ", the grid's nodes";
+  }
+  for (const std::vector<float>* values : {&message.x, &message.y, &message.z}) {
+    for (const float value : *values) {
+      if (!std::isfinite(value)) return field + ": a value is not finite";
+    }
+  }
+  *out = {message.x, message.y, message.z};
+  return "";
+}
+
+/// What the simulation carries between steps: the integrator's memory, the guard's rollback
+/// point (an earlier step's, or none: this one) and the sleep watch.
+std::string ReadCarried(const checkpoint_t& message, int nodes, sim::CarriedState<float>* out) {
+  constexpr int kStepsToSleep = sim::Simulation<float>::kStepsToSleep;
+  std::string problem =
+      ReadNodeVectors(message.integrator_memory, "integrator_memory", nodes, true, &out->integrator);
+  const bool rollback = message.rollback_positions.num_nodes != 0;
+  sim::NodeVectors<float> positions, velocities;
+  if (problem.empty())
+    problem = ReadNodeVectors(message.rollback_positions, "rollback_positions", nodes, true, &positions);
+  if (problem.empty())
+    problem =
+        ReadNodeVectors(message.rollback_velocities, "rollback_velocities", nodes, !rollback, &velocities);
+  if (problem.empty() && rollback &&
+      !(message.rollback_step >= 0 && message.rollback_step < message.step &&
+        std::isfinite(message.rollback_sim_time) && message.rollback_sim_time <= message.sim_time))
+    problem = "rollback_step, rollback_sim_time: allowed an earlier step and time than the checkpoint's";
+  if (problem.empty() && (message.calm_steps < 0 || message.calm_steps >= kStepsToSleep))
+    problem = "calm_steps: " + std::to_string(message.calm_steps) + "; allowed 0 .. " +
+              std::to_string(kStepsToSleep - 1);
+  if (problem.empty())
+    problem =
+        ReadNodeVectors(message.calm_start, "calm_start", nodes, message.calm_steps == 0, &out->calm_start);
+  if (!problem.empty()) return problem;
+  if (rollback) {
+    out->rollback = {positions.x,
+                     positions.y,
+                     positions.z,
+                     velocities.x,
+                     velocities.y,
+                     velocities.z,
+                     message.rollback_sim_time,
+                     message.rollback_step};
+  }
+  out->calm_steps = message.calm_steps;
+  return "";
+}
+
 std::string ReadSimulation(const checkpoint_t& message, const Scene& scene,
                            sim::SimulationSnapshot<float>* out) {
   Scene in_use = scene;
@@ -293,6 +360,7 @@ std::string ReadSimulation(const checkpoint_t& message, const Scene& scene,
   if (problem.empty()) problem = ReadState(message, in_use.sim.cols * in_use.sim.rows, &out->state);
   if (problem.empty() && sim::StateHash(out->state) != uint64_t(message.state_hash))
     problem = "state_hash: does not match the nodes' positions and velocities";
+  if (problem.empty()) problem = ReadCarried(message, in_use.sim.cols * in_use.sim.rows, &out->carried);
   if (!problem.empty()) return problem;
   out->params = in_use.sim;
   out->substeps = message.substeps;
@@ -346,6 +414,18 @@ checkpoint_t MakeCheckpointMessage(const SessionSnapshot& snapshot, const std::s
   message.vx = state.vx;
   message.vy = state.vy;
   message.vz = state.vz;
+  const sim::CarriedState<float>& carried = simulation.carried;
+  const sim::NodeVectors<float>& memory = carried.integrator;
+  message.integrator_memory = NodeVectorsMessage(memory.x, memory.y, memory.z);
+  const sim::ClothState<float>& rollback = carried.rollback;
+  const bool rolls_back = rollback.num_nodes() > 0;
+  message.rollback_step = rolls_back ? rollback.step : state.step;
+  message.rollback_sim_time = rolls_back ? rollback.time : state.time;
+  message.rollback_positions = NodeVectorsMessage(rollback.x, rollback.y, rollback.z);
+  message.rollback_velocities = NodeVectorsMessage(rollback.vx, rollback.vy, rollback.vz);
+  message.calm_steps = carried.calm_steps;
+  const sim::NodeVectors<float>& calm = carried.calm_start;
+  message.calm_start = NodeVectorsMessage(calm.x, calm.y, calm.z);
   return message;
 }
 

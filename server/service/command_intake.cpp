@@ -97,7 +97,7 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   ack.accepted = ack.reason.empty();
   if (ack.accepted) ack.reason = note_;
   if (ack.accepted) {
-    // What changes the session goes into the journal; a REFRESH goes when its clean point is made.
+    // What changes the session goes into the journal; a REFRESH changes nothing.
     if (journal_ != nullptr && channel != channels_.refresh)
       journal_->Applied(session_, channel, data, size, UnixMicros());
     ++stats_.commands_accepted;

@@ -39,7 +39,7 @@ bool OfflineRender::PublishDue() {
   if (log_ != nullptr) log_->AdvanceTo(time);
   if (state_cadence_.Due(time, StateRate(session_), tolerance_)) PublishState();
   if (params_cadence_.Due(time, 1.0, tolerance_)) PublishParams();
-  journal_.AtBoundary(&session_, log_ != nullptr ? log_->utime() : 0);  // clean points, for replay
+  journal_.AtBoundary(session_, log_ != nullptr ? log_->utime() : 0);  // checkpoints, for replay
   if (!frame_cadence_.Due(time, session_.scene().service.frame_rate, tolerance_)) return false;
   DrawFrame();
   return true;

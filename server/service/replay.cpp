@@ -12,7 +12,6 @@
 #include "messages/event_log_reader.hpp"
 #include "server/service/checkpoint_codec.hpp"
 #include "server/service/command_apply.hpp"
-#include "server/service/journal.hpp"
 
 namespace flagsim {
 namespace {
@@ -41,7 +40,7 @@ class Replayer {
     return wire::CheckedDecode<Message>(data.data(), data.size(), kMaxMessageBytes, &error);
   }
   bool Resume(const checkpoint_t& checkpoint);
-  /// Steps on to `step` (if ahead), making the periodic clean points on the way.
+  /// Steps on to `step` (if ahead).
   void AdvanceTo(int64_t step);
   bool Check(const char* what, int64_t step, uint64_t recorded);
   bool Apply(const applied_command_t& command);
@@ -101,10 +100,7 @@ bool Replayer::Resume(const checkpoint_t& checkpoint) {
 }
 
 void Replayer::AdvanceTo(int64_t step) {
-  while (session_->simulation().state().step < step) {
-    session_->Step();
-    if (Journal::PeriodicCheckpointAt(session_->simulation().state().step)) session_->CleanSnapshot();
-  }
+  while (session_->simulation().state().step < step) session_->Step();
   report_.last_step = session_->simulation().state().step;
 }
 
@@ -124,10 +120,6 @@ bool Replayer::Apply(const applied_command_t& command) {
   }
   AdvanceTo(command.step);
   ++report_.commands;
-  if (command.channel == "REFRESH") {
-    session_->CleanSnapshot();
-    return true;
-  }
   const std::string problem = ApplyCommandBytes(command.channel, command.data, session_.get());
   if (problem.empty()) return true;
   return Differ(command.step, command.channel + " at step " + std::to_string(command.step) +

@@ -1,10 +1,9 @@
 // flagd replay: a recorded session stepped again from its log, every recorded state hash checked
 // bit for bit.
 //
-//   resume     from the log's first whole CHECKPOINT (a session at a clean point)
-//   then, event by event in the log's order, first stepping on to the event's step (with the
-//   periodic clean points at their boundaries, as the server makes them):
-//     APPLIED     apply the command (a REFRESH makes a clean point, as it did live)
+//   resume     from the log's first whole CHECKPOINT (a session at a step boundary)
+//   then, event by event in the log's order, first stepping on to the event's step:
+//     APPLIED     apply the command
 //     STATE       check its state hash against the replayed session's
 //     CHECKPOINT  check its state hash too
 //   stop at the first difference, at a log cut short, or where a new session starts.
@@ -28,7 +27,7 @@ struct ReplayReport {
   std::string first_reason;    ///< its reason: start, refresh, periodic
   int64_t last_step = -1;      ///< the last step replayed to
   int threads = 0;             ///< replayed on
-  int64_t commands = 0;        ///< APPLIED commands applied (REFRESH included)
+  int64_t commands = 0;        ///< APPLIED commands applied
   int64_t states_checked = 0;  ///< STATE hashes compared
   int64_t checkpoints_checked = 0;
   int64_t skipped = 0;  ///< hashes of steps before where the replay stood (not comparable)

@@ -43,7 +43,7 @@ void Server::Run(const std::atomic<bool>& stop) {
     bus_.Handle(static_cast<int>(std::ceil(wait * 1000)));
   }
   intake_.FlushPending();
-  journal_.End(&session_, UnixMicros());
+  journal_.End(session_, UnixMicros());
   if (inputs_) inputs_->Close();
   frames_.Drain();
   PublishState();  // the last word: where the flag stopped
@@ -55,7 +55,7 @@ double Server::Tick(double now) {
     start_wall_ = last_tick_ = next_second_ = window_wall_start_ = now;
     window_sim_start_ = session_.simulation().state().time;
     window_bytes_start_ = bus_.bytes_published();
-    journal_.AtBoundary(&session_, UnixMicros());  // the session's first checkpoint
+    journal_.AtBoundary(session_, UnixMicros());  // the session's first checkpoint
   }
   bus_.HandleAll();
   StepDue(now);
@@ -99,7 +99,7 @@ void Server::StepDue(double now) {
 // (FrameDue), unless the stage or the publisher is still busy with the last.
 void Server::AfterStep() {
   if (inputs_) inputs_->AdvanceTo(session_.simulation().state().time);
-  journal_.AtBoundary(&session_, UnixMicros());
+  journal_.AtBoundary(session_, UnixMicros());
   intake_.AfterStep();
   const double time = session_.simulation().state().time;
   if (state_cadence_.Due(time, StateRate(session_))) PublishState();
@@ -114,7 +114,7 @@ void Server::PublishDue(double now) {
   const int64_t request = intake_.TakeRefreshRequest();
   const bool refresh = request >= 0;
   if (refresh) {
-    journal_.Refresh(&session_, request, UnixMicros());
+    journal_.Refresh(session_, UnixMicros());
     PublishState();
     keyframe_request_ = request;  // the latest, if several
     frame_due_ = true;            // the keyframe goes out now, not at the next frame time

@@ -108,10 +108,11 @@ FlagSimulation StartingSimulation(const Scene& scene) {
   FlagSimulation settling(scene.sim, scene.wind, scene.seed);
   if (scene.settle <= 0) return settling;
   while (settling.state().time < scene.settle) settling.Step();
-  sim::SimulationSnapshot<float> start = settling.CleanSnapshot();
+  sim::SimulationSnapshot<float> start = settling.Snapshot();
   start.state.time = 0;
   start.state.step = 0;
   start.wind = sim::WindField(scene.wind, scene.seed).State();
+  start.carried = {};  // a fresh start from the drape: nothing carried from the settling
   return FlagSimulation(start);
 }
 
@@ -127,8 +128,8 @@ Session::Session(const SessionSnapshot& snapshot)
       substeps_segment_(snapshot.timeline_segment),
       substeps_fixed_(snapshot.substeps_fixed) {}
 
-SessionSnapshot Session::CleanSnapshot() {
-  return {initial_, scene_, simulation_.CleanSnapshot(), substeps_segment_, substeps_fixed_};
+SessionSnapshot Session::Snapshot() const {
+  return {initial_, scene_, simulation_.Snapshot(), substeps_segment_, substeps_fixed_};
 }
 
 std::string Session::ApplyWind(const sim::WindSettings& wind) {

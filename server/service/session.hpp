@@ -46,7 +46,7 @@ struct TimelineEdit {
   sim::Keyframe key;
 };
 
-/// A session at a clean point (Session::CleanSnapshot): all its next steps depend on.
+/// A session at a step boundary (Session::Snapshot): all its next steps depend on.
 struct SessionSnapshot {
   Scene initial;  ///< the scene it started from
   Scene scene;    ///< the scene as it stands
@@ -61,8 +61,8 @@ class Session {
   /// Resumes from a snapshot: its next steps are those the snapshot's session takes.
   explicit Session(const SessionSnapshot& snapshot);
 
-  /// Makes this step boundary a clean point (sim::Simulation::CleanSnapshot) and returns it.
-  SessionSnapshot CleanSnapshot();
+  /// This step boundary as a snapshot (sim::Simulation::Snapshot): a pure read.
+  SessionSnapshot Snapshot() const;
 
   /// Applies a wind setting; returns "" or why it was rejected (then nothing changed).
   std::string ApplyWind(const sim::WindSettings& wind);

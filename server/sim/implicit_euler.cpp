@@ -49,6 +49,8 @@ class ImplicitEuler : public Integrator<Real> {
   double StableStep(const FrequencyBound&) const override { return std::numeric_limits<double>::infinity(); }
 
   void Reset() override { dv_.SetZero(); }
+  NodeVectors<Real> Memory() const override { return dv_; }
+  void Recall(const NodeVectors<Real>& memory) override { dv_ = memory; }
 
  private:
   NodeForces<Real> forces_;

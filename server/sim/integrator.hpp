@@ -9,6 +9,7 @@
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/cloth_state.hpp"
 #include "server/sim/forces.hpp"
+#include "server/sim/node_vectors.hpp"
 #include "server/sim/sim_params.hpp"
 #include "server/sim/wind_field.hpp"
 
@@ -35,6 +36,15 @@ class Integrator {
   /// the last substep, factorisations). The simulation calls it whenever the state, parameters
   /// or wind change other than by Substep.
   virtual void Reset() {}
+  /// What is carried from one substep to the next that changes the next one's result, for a
+  /// snapshot: at most a 3-vector per node; empty if nothing (a factorisation is rebuilt from the
+  /// model alone, the same bit for bit).
+  virtual NodeVectors<Real> Memory() const { return {}; }
+  /// Takes up another integrator's Memory() (of the same kind and grid), so that the next
+  /// substep is the one that integrator would take; an empty memory is Reset().
+  virtual void Recall(const NodeVectors<Real>& memory) {
+    if (memory.x.empty()) Reset();
+  }
 };
 
 template <typename Real>

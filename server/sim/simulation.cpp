@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <stdexcept>
 
 namespace flagsim::sim {
@@ -39,6 +40,11 @@ Real LargestStretchSquared(const ClothModel<Real>& model, const ClothState<Real>
     }
   }
   return largest;
+}
+
+template <typename Real>
+bool AllSized(size_t size, std::initializer_list<const std::vector<Real>*> vectors) {
+  return std::all_of(vectors.begin(), vectors.end(), [size](const auto* v) { return v->size() == size; });
 }
 
 }  // namespace
@@ -91,15 +97,39 @@ Simulation<Real>::Simulation(const SimulationSnapshot<Real>& snapshot)
                                 " nodes, its parameters make " + std::to_string(model_.num_nodes()));
   integrator_ = MakeIntegrator<Real>(params_.integrator);
   SetSubsteps(snapshot.substeps);
-  Checkpoint();
+  Carry(snapshot.carried);
+}
+
+// Each carried vector is empty or holds a value per node: anything else is another grid's.
+template <typename Real>
+void Simulation<Real>::Carry(const CarriedState<Real>& carried) {
+  const size_t n = model_.num_nodes();
+  const NodeVectors<Real>& memory = carried.integrator;
+  const ClothState<Real>& rollback = carried.rollback;
+  const NodeVectors<Real>& calm = carried.calm_start;
+  const auto memory_sized = [&](size_t size) { return AllSized(size, {&memory.x, &memory.y, &memory.z}); };
+  const auto rollback_sized = [&](size_t size) {
+    return AllSized(size, {&rollback.x, &rollback.y, &rollback.z, &rollback.vx, &rollback.vy, &rollback.vz});
+  };
+  const bool fits = (memory_sized(0) || memory_sized(n)) && (rollback_sized(0) || rollback_sized(n)) &&
+                    (carried.calm_steps <= 0 || AllSized(n, {&calm.x, &calm.y, &calm.z}));
+  if (!fits)
+    throw std::invalid_argument("snapshot: what it carries does not fit its " + std::to_string(n) + " nodes");
+  integrator_->Recall(memory);
+  checkpoint_ = rollback_sized(0) ? state_ : rollback;
+  calm_steps_ = std::max(0, carried.calm_steps);
+  if (calm_steps_ > 0) calm_start_ = calm;
 }
 
 template <typename Real>
-SimulationSnapshot<Real> Simulation<Real>::CleanSnapshot() {
-  integrator_->Reset();
-  Checkpoint();
-  calm_steps_ = 0;
-  return {params_, wind_.State(), state_, substeps_, guard_factor_, good_steps_, recoveries_, sleeping_};
+SimulationSnapshot<Real> Simulation<Real>::Snapshot() const {
+  CarriedState<Real> carried;
+  carried.integrator = integrator_->Memory();
+  if (checkpoint_.step != state_.step) carried.rollback = checkpoint_;
+  carried.calm_steps = calm_steps_;
+  if (calm_steps_ > 0) carried.calm_start = calm_start_;
+  return {params_,     wind_.State(), state_,    substeps_, guard_factor_,
+          good_steps_, recoveries_,   sleeping_, carried};
 }
 
 template <typename Real>
@@ -201,17 +231,13 @@ void Simulation<Real>::WatchForSleep(double fastest) {
     calm_steps_ = 0;
     return;
   }
-  if (calm_steps_ == 0) {
-    calm_x_ = state_.x;
-    calm_y_ = state_.y;
-    calm_z_ = state_.z;
-  }
+  if (calm_steps_ == 0) calm_start_ = {state_.x, state_.y, state_.z};
   if (++calm_steps_ < kStepsToSleep) return;
   calm_steps_ = 0;
   Real farthest = 0;
   for (int i = 0; i < state_.num_nodes(); ++i) {
-    farthest = std::max({farthest, std::abs(state_.x[i] - calm_x_[i]), std::abs(state_.y[i] - calm_y_[i]),
-                         std::abs(state_.z[i] - calm_z_[i])});
+    farthest = std::max({farthest, std::abs(state_.x[i] - calm_start_.x[i]),
+                         std::abs(state_.y[i] - calm_start_.y[i]), std::abs(state_.z[i] - calm_start_.z[i])});
   }
   sleeping_ = farthest < Real(kSleepDistance) && fastest < kSleepSpeed;
 }

@@ -32,6 +32,7 @@
 #include "server/sim/cloth_state.hpp"
 #include "server/sim/forces.hpp"
 #include "server/sim/integrator.hpp"
+#include "server/sim/node_vectors.hpp"
 #include "server/sim/self_collision.hpp"
 #include "server/sim/sim_params.hpp"
 #include "server/sim/wind_field.hpp"
@@ -46,8 +47,18 @@ struct GuardEvent {
   std::string Describe() const;
 };
 
-/// A simulation at a clean point (Simulation::CleanSnapshot): all a step depends on, so that a
-/// simulation built from it continues bit for bit as the original does.
+/// What a simulation carries from one step to the next besides its state, so that a snapshot
+/// holds all the next steps depend on. An empty vector carries nothing.
+template <typename Real>
+struct CarriedState {
+  NodeVectors<Real> integrator;  ///< Integrator::Memory(): forces or a first guess from the last substep
+  ClothState<Real> rollback;     ///< the guard's checkpoint when it is an earlier step's; empty: this one
+  int calm_steps = 0;            ///< the sleep watch: steps in a row in calm air,
+  NodeVectors<Real> calm_start;  ///<   and the positions when the calm began (when calm_steps > 0)
+};
+
+/// A simulation at a step boundary (Simulation::Snapshot): all its next steps depend on, so that
+/// a simulation built from it continues bit for bit as the original does.
 template <typename Real>
 struct SimulationSnapshot {
   SimParams params;  ///< as in use, an integrator the guard chose included
@@ -58,6 +69,7 @@ struct SimulationSnapshot {
   int64_t good_steps = 0;  ///< steps since the guard last acted
   int64_t recoveries = 0;
   bool sleeping = false;
+  CarriedState<Real> carried;  ///< {} for a fresh start: nothing carried, the guard's checkpoint here
 };
 
 /// Substeps per step a flag may ask for or need (the `substeps` parameter, or what SubstepsFor
@@ -110,12 +122,10 @@ class Simulation {
   /// Resumes from a snapshot: the next steps are those the snapshot's simulation takes.
   explicit Simulation(const SimulationSnapshot<Real>& snapshot);
 
-  /// Makes this step boundary a clean point and returns its snapshot: the integrator forgets
-  /// what it carries between substeps, the guard takes its checkpoint, the watch for sleep starts
-  /// over. What follows depends on the snapshot alone, so a replay that resumes from it and the
-  /// running simulation take the same steps. (Taking one is part of a session's history: a run
-  /// that takes snapshots at other steps may differ in the last bits.)
-  SimulationSnapshot<Real> CleanSnapshot();
+  /// This step boundary as a snapshot, what the integrator, the guard and the sleep watch carry
+  /// included. A pure read: a run that takes snapshots steps as one that takes none, and a
+  /// simulation resumed from one takes the same steps as this one.
+  SimulationSnapshot<Real> Snapshot() const;
 
   /// Advances one step of params().dt.
   void Step();
@@ -150,8 +160,7 @@ class Simulation {
   int64_t recoveries() const { return recoveries_; }
   const GuardEvent& last_guard_event() const { return last_event_; }
   bool sleeping() const { return sleeping_; }
-  /// What self-collision did in the last step (all zero when it is off).
-  /// What self-collision did in the last step, over all its passes.
+  /// What self-collision did in the last step, over all its passes (all zero when it is off).
   const SelfCollisionStats& self_collision_stats() const { return collision_stats_; }
   uint64_t Hash() const { return StateHash(state_); }
 
@@ -168,6 +177,8 @@ class Simulation {
   void Recover(const std::string& problem);
   bool Escalate(int64_t lost, GuardEvent* event);
   void Checkpoint() { checkpoint_ = state_; }
+  /// Takes up what a snapshot carries (the integrator's memory, the rollback point, the watch).
+  void Carry(const CarriedState<Real>& carried);
 
   SimParams params_;
   ClothModel<Real> model_;
@@ -184,8 +195,8 @@ class Simulation {
   int64_t recoveries_ = 0;
   int64_t good_steps_ = 0;  ///< since the last recovery
   GuardEvent last_event_;
-  int calm_steps_ = 0;                          ///< steps in a row in calm air, up to kStepsToSleep
-  std::vector<Real> calm_x_, calm_y_, calm_z_;  ///< positions when the calm began
+  int calm_steps_ = 0;            ///< steps in a row in calm air, up to kStepsToSleep
+  NodeVectors<Real> calm_start_;  ///< positions when the calm began
   bool sleeping_ = false;
 };
 

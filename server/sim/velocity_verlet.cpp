@@ -49,6 +49,17 @@ class VelocityVerlet : public Integrator<Real> {
 
   void Reset() override { have_forces_ = false; }
 
+  NodeVectors<Real> Memory() const override {
+    if (!have_forces_) return {};
+    return {forces_.x, forces_.y, forces_.z};
+  }
+
+  void Recall(const NodeVectors<Real>& memory) override {
+    have_forces_ = !memory.x.empty();
+    forces_ = {memory.x, memory.y, memory.z};
+    half_v_.Resize(int(memory.x.size()));
+  }
+
  private:
   void Evaluate(const StepContext<Real>& context, const ClothState<Real>& state, double t) {
     context.evaluator.Evaluate(context.model, context.params, context.wind, state, t, &forces_);

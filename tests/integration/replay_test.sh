@@ -5,7 +5,7 @@
 # mid-session, and flagd records its own inputs; flagd replay then steps each log again and
 # checks every state hash (the inputs log: every checkpoint's), at 1 and 2 threads, and a copy of
 # a log cut mid-event replays up to where it ends. Velocity Verlet carries
-# forces between substeps, so a clean point made live but not in the replay would show.
+# forces between substeps, so a checkpoint that did not carry them would show.
 # Usage: replay_test.sh BUILD_DIR
 set -euo pipefail
 build=$1

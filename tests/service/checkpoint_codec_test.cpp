@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "messages/checked_decode.hpp"
 #include "messages/publisher.hpp"
@@ -72,9 +74,8 @@ checkpoint_t OverTheWire(const checkpoint_t& message) {
 TEST(CheckpointCodec, AResumedSessionStepsAndDrawsAsTheOriginal) {
   Session original = Started();
   SessionSnapshot snapshot;
-  ASSERT_EQ(
-      ReadCheckpoint(OverTheWire(MakeCheckpointMessage(original.CleanSnapshot(), "refresh", 1)), &snapshot),
-      "");
+  ASSERT_EQ(ReadCheckpoint(OverTheWire(MakeCheckpointMessage(original.Snapshot(), "refresh", 1)), &snapshot),
+            "");
   Session resumed(snapshot);
   for (int i = 0; i < 600; ++i) {  // past the glide, round the loop, across segments
     original.Step();
@@ -99,7 +100,7 @@ TEST(CheckpointCodec, AResumedSessionStepsAndDrawsAsTheOriginal) {
 
 TEST(CheckpointCodec, TheMessageSaysWhereAndWhy) {
   Session session = Started();
-  const checkpoint_t message = MakeCheckpointMessage(session.CleanSnapshot(), "periodic", 42);
+  const checkpoint_t message = MakeCheckpointMessage(session.Snapshot(), "periodic", 42);
   EXPECT_EQ(message.step, session.simulation().state().step);
   EXPECT_EQ(uint64_t(message.state_hash), session.simulation().Hash());
   EXPECT_EQ(message.reason, "periodic");
@@ -111,7 +112,7 @@ TEST(CheckpointCodec, TheMessageSaysWhereAndWhy) {
 template <class Spoil>
 void ExpectRefused(Spoil spoil, const std::string& field) {
   Session session = Started();
-  checkpoint_t message = MakeCheckpointMessage(session.CleanSnapshot(), "refresh", 1);
+  checkpoint_t message = MakeCheckpointMessage(session.Snapshot(), "refresh", 1);
   spoil(message);
   SessionSnapshot snapshot;
   snapshot.timeline_segment = 77;
@@ -141,6 +142,57 @@ TEST(CheckpointCodec, HostileCheckpointsAreRefusedWithTheFieldNamed) {
   ExpectRefused([](checkpoint_t& m) { m.guard_factor = 1000; }, "guard_factor");
   ExpectRefused([nan](checkpoint_t& m) { m.wind_carried = nan; }, "wind_carried");
   ExpectRefused([](checkpoint_t& m) { m.timeline_segment = -5; }, "timeline_segment");
+  ExpectRefused([](checkpoint_t& m) { m.integrator_memory.num_nodes = 5; }, "integrator_memory.num_nodes");
+  ExpectRefused([](checkpoint_t& m) { m.rollback_velocities = {}; }, "rollback_velocities.num_nodes");
+  ExpectRefused([](checkpoint_t& m) { m.rollback_step = m.step + 1; }, "rollback_step");
+  ExpectRefused([](checkpoint_t& m) { m.rollback_positions.z[2] = std::numeric_limits<float>::quiet_NaN(); },
+                "rollback_positions: a value");
+  ExpectRefused([](checkpoint_t& m) { m.calm_steps = -1; }, "calm_steps");
+  ExpectRefused([](checkpoint_t& m) { m.calm_steps = 3; }, "calm_start.num_nodes");
+}
+
+/// `scene` stepped `steps` steps, once straight through and once rebuilt from its checkpoint,
+/// read off the wire, every 7 steps: the same steps bit for bit. Returns the most calm steps any
+/// of the checkpoints carried.
+int ExpectTheSameRunThroughCheckpoints(const Scene& scene, int steps) {
+  Session original(scene);
+  auto resumed = std::make_unique<Session>(scene);
+  int calm_steps = 0;
+  for (int i = 1; i <= steps; ++i) {
+    original.Step();
+    resumed->Step();
+    if (i % 7 != 0) continue;
+    const checkpoint_t message = OverTheWire(MakeCheckpointMessage(resumed->Snapshot(), "periodic", 1));
+    calm_steps = std::max(calm_steps, int(message.calm_steps));
+    SessionSnapshot snapshot;
+    EXPECT_EQ(ReadCheckpoint(message, &snapshot), "");
+    resumed = std::make_unique<Session>(snapshot);
+  }
+  const std::string integrator = sim::IntegratorName(scene.sim.integrator);
+  EXPECT_EQ(resumed->simulation().Hash(), original.simulation().Hash()) << integrator;
+  EXPECT_EQ(resumed->simulation().sleeping(), original.simulation().sleeping()) << integrator;
+  return calm_steps;
+}
+
+// What the integrator, the guard and the sleep watch carry from step to step crosses the wire:
+// velocity Verlet's forces and implicit Euler's first guess under the busy timeline, and the
+// watch of a flag settling in still air (which falls asleep on the way).
+TEST(CheckpointCodec, WhatTheSimulationCarriesCrossesTheWire) {
+  for (const sim::IntegratorKind kind :
+       {sim::IntegratorKind::kVelocityVerlet, sim::IntegratorKind::kImplicitEuler}) {
+    Scene busy = Busy();
+    busy.sim.integrator = kind;
+    ExpectTheSameRunThroughCheckpoints(busy, 200);
+  }
+  Scene still;
+  still.sim.cols = 8;
+  still.sim.rows = 6;
+  still.sim.forces.friction = 5.0;
+  still.wind = {{0, 0, 0}, 0, 0};
+  EXPECT_GT(ExpectTheSameRunThroughCheckpoints(still, 3000), 0);
+  Session asleep(still);
+  for (int i = 0; i < 3000; ++i) asleep.Step();
+  EXPECT_TRUE(asleep.simulation().sleeping());
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// What the tests of logs and replay share: scratch files, and a session that shows a missed
-// clean point.
+// What the tests of logs and replay share: scratch files, and a session whose integrator
+// carries state between substeps.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -17,7 +17,8 @@ inline std::string TempPath(const std::string& name) {
 }
 
 /// A small flag stepped by velocity Verlet, which carries forces from one substep to the next:
-/// a clean point the replay failed to make where the session made one shows in the hashes.
+/// a checkpoint that failed to carry them, or that changed the run by being taken, shows in
+/// the hashes.
 /// One thread (replays run on one and two).
 inline Scene SmallVerletScene() {
   Scene scene;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
@@ -248,45 +250,58 @@ TEST(Simulation, TheGuardKeepsStableIntegratorsSoundAtTheLargestStep) {
   }
 }
 
-// A simulation resumed from a clean snapshot takes the original's steps bit for bit, whatever
-// its integrator carries between substeps, across a wind ramp and a parameter change.
-TEST(Simulation, ResumesFromACleanSnapshotBitForBit) {
-  for (const IntegratorKind kind :
-       {IntegratorKind::kSymplecticEuler, IntegratorKind::kVelocityVerlet, IntegratorKind::kRk4,
-        IntegratorKind::kXpbd, IntegratorKind::kImplicitEuler, IntegratorKind::kProjectiveDynamics}) {
+// A snapshot is a pure read and holds all the next steps depend on: a run rebuilt from its own
+// snapshot at every step (so at steps the guard's checkpoints do not fall on, with forces or a
+// first guess carried between substeps) takes the uninterrupted run's steps bit for bit, across
+// a wind ramp and a parameter change, in every integrator.
+TEST(Simulation, ARunResumedFromItsSnapshotAtEveryStepIsTheSameRun) {
+  for (int kind = 0; kind <= int(IntegratorKind::kProjectiveDynamics); ++kind) {
     SimParams params;
     params.cols = 16;
     params.rows = 12;
-    params.integrator = kind;
-    Simulation<float> original(params, WindSettings{{8.0, 0.0, 2.0}, 0.3, 0.0}, 7);
-    for (int i = 0; i < 30; ++i) original.Step();
-    original.SetWind(WindSettings{{2.0, 1.0, 6.0}, 0.5, 0.2});  // ramps over 0.2 s: past the snapshot
-    for (int i = 0; i < 20; ++i) original.Step();
-    Simulation<float> resumed(original.CleanSnapshot());
+    params.integrator = IntegratorKind(kind);
+    const WindSettings gusty{{8.0, 0.0, 2.0}, 0.3, 0.0}, ramp{{2.0, 1.0, 6.0}, 0.5, 0.2};
+    Simulation<float> original(params, gusty, 7);
+    auto resumed = std::make_unique<Simulation<float>>(params, gusty, 7);
     params.forces.stiffness = 3000;
-    for (int i = 0; i < 200; ++i) {
-      if (i == 50) {
+    for (int i = 0; i < 120; ++i) {
+      if (i == 30) {
+        original.SetWind(ramp);
+        resumed->SetWind(ramp);
+      }
+      if (i == 70) {
         original.SetParams(params);
-        resumed.SetParams(params);
+        resumed->SetParams(params);
       }
       original.Step();
-      resumed.Step();
+      resumed->Step();
+      resumed = std::make_unique<Simulation<float>>(resumed->Snapshot());
     }
-    EXPECT_EQ(resumed.Hash(), original.Hash()) << IntegratorName(kind);
-    EXPECT_EQ(resumed.state().step, original.state().step);
-    EXPECT_EQ(resumed.state().time, original.state().time);
+    EXPECT_EQ(resumed->Hash(), original.Hash()) << IntegratorName(IntegratorKind(kind));
+    EXPECT_EQ(resumed->state().step, original.state().step);
+    EXPECT_EQ(resumed->state().time, original.state().time);
   }
 }
 
-// The guard's state goes with the snapshot: resumed after a recovery, the simulation keeps the
-// raised substeps and the fallback integrator the original has.
+// The guard's state goes with the snapshot: resumed the step before a step goes bad, between two
+// of the guard's checkpoints, the simulation rolls back as far as the original, redoes the same
+// steps and keeps the raised substeps.
 TEST(Simulation, ASnapshotCarriesTheGuardsState) {
   SimParams params;
   params.forces.stiffness = 1e5;
   params.substeps = 1;
-  Simulation<float> original(params, WindSettings{{12.0, 0.0, 3.0}, 0.3, 0.0});
-  while (original.recoveries() == 0) original.Step();
-  Simulation<float> resumed(original.CleanSnapshot());
+  const WindSettings gale{{12.0, 0.0, 3.0}, 0.3, 0.0};
+  Simulation<float> probe(params, gale);
+  while (probe.recoveries() == 0) probe.Step();
+  const int64_t bad_step = probe.last_guard_event().step;  // the step count once it went bad
+  ASSERT_NE((bad_step - 1) % Simulation<float>::kCheckpointInterval, 0) << "the rollback point would be here";
+
+  Simulation<float> original(params, gale);
+  while (original.state().step < bad_step - 1) original.Step();
+  Simulation<float> resumed(original.Snapshot());
+  original.Step();
+  resumed.Step();
+  EXPECT_EQ(resumed.last_guard_event().Describe(), original.last_guard_event().Describe());
   EXPECT_EQ(resumed.substeps(), original.substeps());
   EXPECT_EQ(resumed.params().integrator, original.params().integrator);
   EXPECT_EQ(resumed.recoveries(), original.recoveries());
@@ -297,17 +312,25 @@ TEST(Simulation, ASnapshotCarriesTheGuardsState) {
   EXPECT_EQ(resumed.Hash(), original.Hash());
 }
 
-// A sleeping flag resumes asleep.
+// The watch for sleep goes with the snapshot: a flag resumed in the middle of a calm falls asleep
+// at the same step as the original, and a sleeping flag resumes asleep.
 TEST(Simulation, ASnapshotCarriesSleep) {
   SimParams params;
   params.cols = 8;
   params.rows = 6;
   params.forces.friction = 5.0;
+  Simulation<float> probe(params, testing::NoWind());
+  for (int i = 0; i < 20000 && !probe.sleeping(); ++i) probe.Step();
+  ASSERT_TRUE(probe.sleeping());
+  const int64_t asleep_at = probe.state().step;
+
   Simulation<float> original(params, testing::NoWind());
-  for (int i = 0; i < 20000 && !original.sleeping(); ++i) original.Step();
-  ASSERT_TRUE(original.sleeping());
-  Simulation<float> resumed(original.CleanSnapshot());
-  EXPECT_TRUE(resumed.sleeping());
+  const int64_t mid_calm = asleep_at - Simulation<float>::kStepsToSleep / 2;
+  while (original.state().step < mid_calm) original.Step();
+  Simulation<float> resumed(original.Snapshot());
+  while (!resumed.sleeping() && resumed.state().step < asleep_at + 1000) resumed.Step();
+  EXPECT_EQ(resumed.state().step, asleep_at);
+  EXPECT_TRUE(Simulation<float>(resumed.Snapshot()).sleeping());
 }
 
 // Substeps fixed for a timeline's segment go with the snapshot, not the parameters' own count.
@@ -315,14 +338,14 @@ TEST(Simulation, ASnapshotKeepsFixedSubsteps) {
   SimParams params;
   Simulation<float> original(params, Breeze());
   original.SetSubsteps(SubstepsFor(params) + 5);
-  Simulation<float> resumed(original.CleanSnapshot());
+  Simulation<float> resumed(original.Snapshot());
   EXPECT_EQ(resumed.substeps(), original.substeps());
 }
 
 TEST(Simulation, ASnapshotWhoseStateDoesNotFitItsGridIsRefused) {
   SimParams params;
   Simulation<float> original(params, Breeze());
-  SimulationSnapshot<float> snapshot = original.CleanSnapshot();
+  SimulationSnapshot<float> snapshot = original.Snapshot();
   snapshot.params.cols = 40;
   EXPECT_THROW(Simulation<float>{snapshot}, std::invalid_argument);
 }
