@@ -33,16 +33,16 @@ bool OfflineRender::Advance() {
   return false;
 }
 
-// t => the log's clock => STATE, PARAMS, frame, as each falls due at t
+// t => the log's clock => CHECKPOINT, STATE, PARAMS, frame, as each falls due at t
 bool OfflineRender::PublishDue() {
   const double time = session_.simulation().state().time;
   if (log_ != nullptr) log_->AdvanceTo(time);
-  if (state_cadence_.Due(time, StateRate(session_), tolerance_)) PublishState();
-  if (params_cadence_.Due(time, 1.0, tolerance_)) PublishParams();
   journal_.AtBoundary(session_, log_ != nullptr ? log_->utime() : 0);  // checkpoints, for replay
-  if (!frame_cadence_.Due(time, session_.scene().service.frame_rate, tolerance_)) return false;
-  DrawFrame();
-  return true;
+  const BoundaryDue due = schedule_.At(session_);
+  if (due.state) PublishState();
+  if (params_cadence_.Due(time, 1.0, tolerance_)) PublishParams();
+  if (due.frame) DrawFrame();
+  return due.frame;
 }
 
 void OfflineRender::PublishState() {

@@ -2,13 +2,13 @@
 // publishing what a live server would into an event log, on simulated time. At each step
 // boundary t before the duration:
 //
-//   STATE    every 1/state_rate s (1 Hz while the flag sleeps), as live
-//   PARAMS   at 0 and every simulated second
 //   CHECKPOINT at 0 and every Journal::kCheckpointSteps steps, so that flagd replay checks it
-//   frame    every 1/frame_rate s: draw; the image to the caller (PNG frames); the changed
-//            tiles picked and compressed by the live server's TileStream (a keyframe first,
-//            then every kKeyframeInterval frames, the rolling refresh), logged paced as the
-//            live server sends them, then the FRAME manifest
+//   STATE    when the live server's BoundarySchedule says, at the same steps
+//   PARAMS   at 0 and every simulated second
+//   frame    when BoundarySchedule says: draw; the image to the caller (PNG frames); the changed
+//            tiles picked and compressed by the live server's TileStream (a keyframe first, then
+//            the rolling refresh), logged paced as the live server sends them, then the FRAME
+//            manifest
 //   step     one dt
 //
 // Without a log only the frames are drawn and handed over.
@@ -19,6 +19,7 @@
 
 #include "messages/channels.hpp"
 #include "server/scene/scene.hpp"
+#include "server/service/boundary_schedule.hpp"
 #include "server/service/frame_painter.hpp"
 #include "server/service/journal.hpp"
 #include "server/service/log_publisher.hpp"
@@ -73,7 +74,8 @@ class OfflineRender {
   Journal journal_;
   FramePainter painter_;
   TileStream tiles_;
-  SimCadence state_cadence_, params_cadence_, frame_cadence_;
+  BoundarySchedule schedule_;  ///< STATE and frames, as the live server publishes them
+  SimCadence params_cadence_;
   OfflineRenderStats stats_;
 };
 

@@ -55,7 +55,7 @@ double Server::Tick(double now) {
     start_wall_ = last_tick_ = next_second_ = window_wall_start_ = now;
     window_sim_start_ = session_.simulation().state().time;
     window_bytes_start_ = bus_.bytes_published();
-    journal_.AtBoundary(session_, UnixMicros());  // the session's first checkpoint
+    AtBoundary();  // the session's first checkpoint, STATE and frame
   }
   bus_.HandleAll();
   StepDue(now);
@@ -94,16 +94,19 @@ void Server::StepDue(double now) {
   if (options_.fast) accumulator_ = 0;
 }
 
-// STATE and frames fall due on simulated time: which steps are published is part of the
-// session, not of the machine's speed. STATE goes out at once, and so does a frame to the stage
-// (FrameDue), unless the stage or the publisher is still busy with the last.
 void Server::AfterStep() {
+  intake_.AfterStep();
+  AtBoundary();
+}
+
+// STATE and frames fall due on simulated time (BoundarySchedule). STATE goes out at once, and so
+// does a frame to the stage (FrameDue), unless the stage or the publisher is still busy with the last.
+void Server::AtBoundary() {
   if (inputs_) inputs_->AdvanceTo(session_.simulation().state().time);
   journal_.AtBoundary(session_, UnixMicros());
-  intake_.AfterStep();
-  const double time = session_.simulation().state().time;
-  if (state_cadence_.Due(time, StateRate(session_))) PublishState();
-  if (frame_cadence_.Due(time, session_.scene().service.frame_rate)) {
+  const BoundaryDue due = schedule_.At(session_);
+  if (due.state) PublishState();
+  if (due.frame) {
     if (frame_due_) ++stats_.frames_skipped;
     frame_due_ = true;
     FrameDue();  // at its own step, not after the batch: the stage takes a copy and the loop goes on

@@ -3,10 +3,11 @@
 //   loop:  commands      bus.Handle: decode, validate, apply, ACK (between steps)
 //          step          real time: as many dt steps as the clock allows (an accumulator);
 //                        --fast: steps back to back
-//          publish       STATE every 1/state_rate of simulated time, and at once on REFRESH;
-//                        PARAMS and TIMELINE each second and after a change; STATUS each second
-//          frame         every 1/frame_rate of simulated time: a copy of what the frame shows
-//                        goes to the frame stage, and the loop steps on
+//          publish       STATE every 1/state_rate of simulated time (BoundarySchedule: at the
+//                        steps a render publishes it), and at once on REFRESH; PARAMS and
+//                        TIMELINE each second and after a change; STATUS each second
+//          frame         every 1/frame_rate of simulated time (BoundarySchedule): a copy of
+//                        what the frame shows goes to the frame stage, and the loop steps on
 //          wait          on the bus until the next step or publication is due
 //   frame stage          draws the copy, picks and compresses the changed tiles (frame_stage.hpp)
 //   paced publisher      sends them no faster than the receivers keep up (paced_publisher.hpp)
@@ -27,6 +28,7 @@
 #include "messages/channels.hpp"
 #include "messages/utime.hpp"
 #include "server/scene/scene.hpp"
+#include "server/service/boundary_schedule.hpp"
 #include "server/service/command_intake.hpp"
 #include "server/service/frame_stage.hpp"
 #include "server/service/inputs_log.hpp"
@@ -35,7 +37,6 @@
 #include "server/service/server_presence.hpp"
 #include "server/service/server_stats.hpp"
 #include "server/service/session.hpp"
-#include "server/service/sim_cadence.hpp"
 
 namespace flagsim {
 
@@ -72,6 +73,7 @@ class Server {
  private:
   void StepDue(double now);
   void AfterStep();
+  void AtBoundary();
   void PublishDue(double now);
   void PublishState();
   void PublishParams();
@@ -95,8 +97,7 @@ class Server {
   double start_wall_ = -1;  ///< s, monotonic, first Tick
   double accumulator_ = 0;  ///< s of wall time owed to the simulation
   double last_tick_ = -1;
-  SimCadence state_cadence_;  ///< STATE, on simulated time
-  SimCadence frame_cadence_;  ///< frames, on simulated time
+  BoundarySchedule schedule_;  ///< STATE and frames, on simulated time
   bool frame_due_ = false;
   int64_t keyframe_request_ = -1;     ///< a REFRESH to answer with the next frame; -1: none
   bool integrator_replaced_ = false;  ///< by the guard: PARAMS is due

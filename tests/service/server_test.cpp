@@ -1,16 +1,26 @@
 // The server's loop on a simulated clock (memq://): it steps as far as the clock has moved, draws
-// every frame that falls due or counts it skipped, and answers a REFRESH with a keyframe.
+// every frame that falls due or counts it skipped, publishes at the steps a render of the scene
+// does, and answers a REFRESH with a keyframe.
 #include "server/service/server.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "client/command_client.hpp"
 #include "flagsim/frame_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
+#include "flagsim/state_t.hpp"
+#include "messages/checked_decode.hpp"
+#include "messages/event_log_reader.hpp"
+#include "server/service/offline_render.hpp"
 
 namespace flagsim {
 namespace {
@@ -29,6 +39,11 @@ class ServerTest : public ::testing::Test {
     options_.clock = [this] { return now_; };
     bus_.Subscribe(channels_.frame, [this](const std::string&, const uint8_t* data, size_t size) {
       manifests_.emplace_back().decode(data, 0, int(size));
+    });
+    bus_.Subscribe(channels_.state, [this](const std::string&, const uint8_t* data, size_t size) {
+      state_t state{};
+      state.decode(data, 0, int(size));
+      state_steps_.push_back(state.step);
     });
   }
 
@@ -51,7 +66,38 @@ class ServerTest : public ::testing::Test {
   ServerOptions options_;
   double now_ = 0;  ///< s, the server's clock
   std::vector<frame_t> manifests_;
+  std::vector<int64_t> state_steps_;  ///< of each STATE heard
 };
+
+/// The steps at which a render of `scene` over `steps` steps' boundaries publishes STATE and frames.
+struct Published {
+  std::vector<int64_t> states, frames;
+};
+Published RenderedSteps(const Scene& scene, int64_t steps, const Channels& channels) {
+  const std::string path =
+      std::string(::testing::TempDir()) + "/" + std::to_string(getpid()) + "_server.lcmlog";
+  {
+    LogPublisher log(path, 0);
+    OfflineRender render(scene, double(steps + 1) * scene.sim.dt, channels, &log, nullptr);
+    while (render.Advance()) {
+    }
+    log.Close();
+  }
+  Published published;
+  EventLogReader reader(path);
+  LogEvent event;
+  std::string error;
+  while (reader.Next(&event)) {
+    const uint8_t* data = event.data.data();
+    const size_t size = event.data.size();
+    if (event.channel == channels.state)
+      published.states.push_back(wire::CheckedDecode<state_t>(data, size, size, &error).value().step);
+    if (event.channel == channels.frame)
+      published.frames.push_back(wire::CheckedDecode<frame_t>(data, size, size, &error).value().step);
+  }
+  std::remove(path.c_str());
+  return published;
+}
 
 TEST_F(ServerTest, StepsAsFarAsTheClockHasMoved) {
   Server server(bus_, channels_, scene_, options_);
@@ -81,12 +127,37 @@ TEST_F(ServerTest, EveryFrameDueIsDrawnOrCountedSkipped) {
     server.DrainFrames();
   }
   ASSERT_EQ(steps(server), 504);
-  // Due after step 1 (time 0 has passed) and at every 16th step: 32.
-  EXPECT_EQ(server.stats().frames_published + server.stats().frames_skipped, 32);
+  // Due at time 0 and at every 16th step: 32. The first went to the stage before the first
+  // STATUS (at time 0 too), which began the window that frames_published counts.
+  EXPECT_EQ(1 + server.stats().frames_published + server.stats().frames_skipped, 32);
   EXPECT_GE(server.stats().frames_published, 1);
-  const int64_t published = server.stats().frames_published;
+  const int64_t published = 1 + server.stats().frames_published;
   ASSERT_TRUE(HandleUntil([&] { return int64_t(manifests_.size()) == published; }));
   EXPECT_TRUE(manifests_.front().keyframe);
+}
+
+// STATE goes out, and frames fall due, at the steps a render of the scene publishes them: which
+// steps publish is the session's, not the clock's (BoundarySchedule).
+TEST_F(ServerTest, PublishesAtTheStepsARenderDoes) {
+  Server server(bus_, channels_, scene_, options_);
+  server.Tick(now_);
+  for (int tick = 1; tick < 64; ++tick) {
+    now_ = tick / 64.0;
+    server.Tick(now_);
+    server.DrainFrames();
+  }
+  ASSERT_EQ(steps(server), 504);
+  const int64_t published = 1 + server.stats().frames_published;  // as above
+  ASSERT_TRUE(HandleUntil([&] { return int64_t(manifests_.size()) == published; }));
+  const Published rendered = RenderedSteps(scene_, 504, channels_);
+  ASSERT_EQ(rendered.frames.size(), 32u);
+  EXPECT_EQ(rendered.frames.front(), 0);
+  ASSERT_TRUE(HandleUntil([&] { return state_steps_.size() >= rendered.states.size(); }));
+  EXPECT_EQ(state_steps_, rendered.states);
+  for (const frame_t& manifest : manifests_) {  // those the stage drew; the others were skipped
+    EXPECT_NE(std::find(rendered.frames.begin(), rendered.frames.end(), manifest.step), rendered.frames.end())
+        << "a live frame at step " << manifest.step;
+  }
 }
 
 TEST_F(ServerTest, ARefreshIsAnsweredByAKeyframeThatNamesIt) {
