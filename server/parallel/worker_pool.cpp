@@ -39,6 +39,7 @@ bool PollFor(double seconds, const Done& done) {
 struct alignas(64) WorkerPool::Share {
   std::atomic<int> next{0};
   int end = 0;
+  std::atomic<bool> owned{false};  ///< its participant has joined the loop
 
   /// The next index of this share, or -1 when none is left.
   int Claim() {
@@ -82,6 +83,7 @@ void WorkerPool::Run(int count, int threads, const Body& body) {
     loop.shares[p].next.store(int(int64_t(count) * p / loop.participants), std::memory_order_relaxed);
     loop.shares[p].end = int(int64_t(count) * (p + 1) / loop.participants);
   }
+  loop.shares[0].owned.store(true, std::memory_order_relaxed);
   const int slot = participants > 1 ? Offer(&loop) : -1;
   Drain(&loop, 0);
   if (slot < 0) return;
@@ -128,9 +130,36 @@ void WorkerPool::AddWorkers(int wanted) {
 
 // Its own share first, then what is left of the others', each from the next one round.
 void WorkerPool::Drain(Loop* loop, int participant) {
-  for (int k = 0; k < loop->participants; ++k) {
-    Share& share = loop->shares[(participant + k) % loop->participants];
-    for (int i = share.Claim(); i >= 0; i = share.Claim()) (*loop->body)(i, participant);
+  Share& own = loop->shares[participant];
+  for (int i = own.Claim(); i >= 0; i = own.Claim()) (*loop->body)(i, participant);
+  for (int k = 1; k < loop->participants; ++k)
+    Help(loop, &loop->shares[(participant + k) % loop->participants], participant);
+}
+
+// Another's share: taken at once if its participant has not come (it may never); left to it while
+// it makes progress, so that its indices run where they ran in the last loop and their data stays
+// in that core's cache; taken index by index once it has made none for kStallSeconds (the kernel
+// took its core).
+void WorkerPool::Help(Loop* loop, Share* share, int participant) {
+  bool stalled = false;
+  int seen = share->next.load(std::memory_order_relaxed);
+  auto since = std::chrono::steady_clock::now();
+  for (int polls = 1; share->next.load(std::memory_order_relaxed) < share->end; ++polls) {
+    if (stalled || !share->owned.load(std::memory_order_acquire)) {
+      const int i = share->Claim();
+      if (i >= 0) (*loop->body)(i, participant);
+      continue;
+    }
+    Pause();
+    if (polls % 16 != 0) continue;
+    const int now_next = share->next.load(std::memory_order_relaxed);
+    const auto now = std::chrono::steady_clock::now();
+    if (now_next != seen) {
+      seen = now_next;
+      since = now;
+    } else if (now - since >= std::chrono::duration<double>(kStallSeconds)) {
+      stalled = true;
+    }
   }
 }
 
@@ -175,6 +204,7 @@ WorkerPool::Loop* WorkerPool::TryJoin(int* participant) {
     const int helper = loop->joined.fetch_add(1) + 1;
     if (helper >= loop->participants) continue;  // full
     loop->inside.fetch_add(1);
+    loop->shares[helper].owned.store(true, std::memory_order_release);
     *participant = helper;
     entered = loop;
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/sim/node_update.hpp"
+
 namespace flagsim::sim {
 namespace {
 
@@ -29,25 +31,27 @@ bool Obstacles::Inside(double x, double y, double z) const {
   return y < 0 || (y < pole_top && x * x + z * z < pole_radius * pole_radius);
 }
 
+namespace {
+
+// The nodes of one row range.
 template <typename Real>
-bool PushOutOfObstacles(const ClothModel<Real>& model, const Obstacles& obstacles, ClothState<Real>* state) {
+void PushRangeOut(const ClothModel<Real>& model, const Obstacles& obstacles, NodeRange range,
+                  ClothState<Real>* state) {
   const double radius = obstacles.pole_radius + obstacles.margin, ground = obstacles.margin;
   const double radius_squared = radius * radius;
   // Most substeps touch nothing: one branch-free pass finds whether any free node needs moving
   // (the pinned hoist edge lies on the pole's surface, within the margin).
-  const int n = state->num_nodes();
   const Real *xs = state->x.data(), *ys = state->y.data(), *zs = state->z.data();
   const Real* inverse_mass = model.inverse_mass.data();
   const Real low = Real(ground), top = Real(obstacles.pole_top), inside = Real(radius_squared);
   int touching = 0;
 #pragma omp simd reduction(| : touching)
-  for (int i = 0; i < n; ++i) {
+  for (int i = range.begin; i < range.end; ++i) {
     const int in_pole = int(ys[i] < top) & int(xs[i] * xs[i] + zs[i] * zs[i] < inside);
     touching |= int(inverse_mass[i] != Real(0)) & (int(ys[i] < low) | in_pole);
   }
-  if (touching == 0) return false;
-  bool moved = false;
-  for (int i = 0; i < n; ++i) {
+  if (touching == 0) return;
+  for (int i = range.begin; i < range.end; ++i) {
     const double x = state->x[i], y = state->y[i], z = state->z[i];
     const double rho_squared = x * x + z * z;
     const bool below = y < ground;
@@ -78,12 +82,21 @@ bool PushOutOfObstacles(const ClothModel<Real>& model, const Obstacles& obstacle
     state->vx[i] = Real(vx);
     state->vy[i] = Real(vy);
     state->vz[i] = Real(vz);
-    moved = true;
   }
-  return moved;
 }
 
-template bool PushOutOfObstacles(const ClothModel<float>&, const Obstacles&, ClothState<float>*);
-template bool PushOutOfObstacles(const ClothModel<double>&, const Obstacles&, ClothState<double>*);
+}  // namespace
+
+// Row by row on the threads, each row on the thread that stepped it (node_update.hpp's
+// ForEachRow shares rows as the integrators do): the nodes stay in that core's cache.
+template <typename Real>
+void PushOutOfObstacles(const ClothModel<Real>& model, const Obstacles& obstacles, int threads,
+                        ClothState<Real>* state) {
+  ForEachRow(model.rows, model.cols, threads,
+             [&](NodeRange row) { PushRangeOut(model, obstacles, row, state); });
+}
+
+template void PushOutOfObstacles(const ClothModel<float>&, const Obstacles&, int, ClothState<float>*);
+template void PushOutOfObstacles(const ClothModel<double>&, const Obstacles&, int, ClothState<double>*);
 
 }  // namespace flagsim::sim

@@ -25,9 +25,9 @@ struct Obstacles {
   bool Inside(double x, double y, double z) const;
 };
 
-/// Moves every free node of `state` out of the pole and the ground as above; returns whether
-/// any moved.
+/// Moves every free node of `state` out of the pole and the ground as above, on `threads` threads.
 template <typename Real>
-bool PushOutOfObstacles(const ClothModel<Real>& model, const Obstacles& obstacles, ClothState<Real>* state);
+void PushOutOfObstacles(const ClothModel<Real>& model, const Obstacles& obstacles, int threads,
+                        ClothState<Real>* state);
 
 }  // namespace flagsim::sim

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
+
+#include "server/parallel/worker_pool.hpp"
 
 namespace flagsim::sim {
 namespace {
@@ -66,6 +69,7 @@ bool SelfCollision<Real>::Resolve(const ClothModel<Real>& model, const SimParams
   stats_.passes = 1;
   thickness_ = std::min(params.thickness, kSpacingShare * std::min(double(model.dx), double(model.dy)));
   dt_ = dt;
+  threads_ = std::max(1, params.threads);
   obstacles_ = Obstacles::Of(params);
   Load(model, start, *state);
   for (int round = 0;; ++round) {
@@ -135,8 +139,6 @@ void SelfCollision<Real>::SweptBoxes() {
 // the patches a pair names, as most of the flag is culled before.
 template <typename Real>
 void SelfCollision<Real>::BoxPatch(int p) {
-  if (boxed_[p]) return;
-  boxed_[p] = true;
   const ClothPatch& patch = patches_.patches[p];
   for (int t : patch.triangles) {
     const auto [a, b, c] = mesh_.triangles[t];
@@ -160,7 +162,7 @@ void SelfCollision<Real>::TriangleNormals() {
   normal_end_.resize(triangles, 3);
   normal_curl_.resize(triangles);
   const auto moved = [&](int node) { return moved_by_.array().segment(node, cells); };
-  for (int r = 0; r + 1 < rows; ++r) {
+  ParallelFor(rows - 1, threads_, [&](int r) {
     const int top = r * cols_, bottom = top + cols_, first = 2 * r * cells;
     CellNormals(start_, top, bottom, cells, first, &normal_start_);
     CellNormals(end_, top, bottom, cells, first, &normal_end_);
@@ -168,7 +170,7 @@ void SelfCollision<Real>::TriangleNormals() {
         (moved(top) + moved(bottom)) * (moved(top) + moved(top + 1));
     EveryOther(normal_curl_.data() + first + 1, cells) =
         (moved(bottom) + moved(bottom + 1)) * (moved(bottom) + moved(top + 1));
-  }
+  });
   normal_longest_ = normal_start_.square().rowwise().sum().max(normal_end_.square().rowwise().sum()).sqrt();
 }
 
@@ -212,24 +214,25 @@ typename SelfCollision<Real>::Cone SelfCollision<Real>::PatchCone(const ClothPat
   return {axis, least, std::sqrt((1 - least) * (1 + least))};
 }
 
-// Regions' boxes and cones, leaves from their nodes and triangles, the rest from their halves.
+// Regions' boxes and cones: the leaves from their nodes and triangles (in parallel), then the
+// rest from their halves, which come before them.
 template <typename Real>
 void SelfCollision<Real>::RegionBounds() {
   const std::vector<PatchRegion>& regions = patches_.regions;
   region_box_.resize(regions.size());
   region_cone_.resize(regions.size());
+  ParallelFor(int(leaf_region_.size()), threads_, [&](int p) {
+    const ClothPatch& patch = patches_.patches[p];
+    Box box{Point::Constant(INFINITY), Point::Constant(-INFINITY)};
+    for (int node : patch.nodes) box = box.Joined(node_box_[node]);
+    region_box_[leaf_region_[p]] = box;
+    region_cone_[leaf_region_[p]] = PatchCone(patch);
+  });
   for (size_t r = 0; r < regions.size(); ++r) {
     const PatchRegion& region = regions[r];
-    if (region.leaf()) {
-      const ClothPatch& patch = patches_.patches[region.patch];
-      Box box{Point::Constant(INFINITY), Point::Constant(-INFINITY)};
-      for (int node : patch.nodes) box = box.Joined(node_box_[node]);
-      region_box_[r] = box;
-      region_cone_[r] = PatchCone(patch);
-    } else {
-      region_box_[r] = region_box_[region.left].Joined(region_box_[region.right]);
-      region_cone_[r] = Union(region_cone_[region.left], region_cone_[region.right]);
-    }
+    if (region.leaf()) continue;
+    region_box_[r] = region_box_[region.left].Joined(region_box_[region.right]);
+    region_cone_[r] = Union(region_cone_[region.left], region_cone_[region.right]);
   }
 }
 
@@ -331,48 +334,65 @@ bool SelfCollision<Real>::Separated(int p, int q) const {
   return b_least - a_most > thickness_ * axis.norm();
 }
 
+// The boxes of every patch a pair names; then each pair's candidates into a list of its own (in
+// parallel), the lists joined in the pairs' order: the same candidates in the same order at any
+// thread count.
 template <typename Real>
 void SelfCollision<Real>::Candidates(const std::vector<std::array<int, 2>>& patch_pairs) {
-  candidates_.clear();
   boxed_.assign(patches_.patches.size(), false);
-  for (const auto& [p, q] : patch_pairs) {
-    BoxPatch(p);
-    BoxPatch(q);
-    AddPairs(p, q);
-    if (p != q) AddPairs(q, p);
+  named_.clear();
+  for (const auto& pair : patch_pairs) {
+    for (int p : pair) {
+      if (!std::exchange(boxed_[p], true)) named_.push_back(p);
+    }
+  }
+  ParallelFor(int(named_.size()), threads_, [&](int i) { BoxPatch(named_[i]); });
+  const int count = int(patch_pairs.size());
+  if (int(pair_candidates_.size()) < count) pair_candidates_.resize(count);
+  near_.resize(threads_);
+  ParallelForEachParticipant(count, threads_, [&](int i, int participant) {
+    const auto [p, q] = patch_pairs[i];
+    std::vector<Pair>& found = pair_candidates_[i];
+    found.clear();
+    AddPairs(p, q, &near_[participant], &found);
+    if (p != q) AddPairs(q, p, &near_[participant], &found);
+  });
+  candidates_.clear();
+  for (int i = 0; i < count; ++i) {
+    candidates_.insert(candidates_.end(), pair_candidates_[i].begin(), pair_candidates_[i].end());
   }
 }
 
 // p's own nodes against q's triangles; p's own edges against q's own edges (for a patch with
 // itself, each edge pair once; for two patches, called both ways, the edges once). Only the
-// primitives inside the other patch's box take part.
+// primitives inside the other patch's box take part (`near` is scratch for them).
 template <typename Real>
-void SelfCollision<Real>::AddPairs(int p, int q) {
+void SelfCollision<Real>::AddPairs(int p, int q, std::vector<int>* near, std::vector<Pair>* found) const {
   const ClothPatch &from = patches_.patches[p], &to = patches_.patches[q];
   const Box &from_box = region_box_[leaf_region_[p]], &to_box = region_box_[leaf_region_[q]];
-  near_.clear();
+  near->clear();
   for (int node : from.owned_nodes) {
-    if (node_box_[node].Overlaps(to_box)) near_.push_back(node);
+    if (node_box_[node].Overlaps(to_box)) near->push_back(node);
   }
   for (int t : to.triangles) {
     if (!triangle_box_[t].Overlaps(from_box)) continue;
-    for (int node : near_) {
+    for (int node : *near) {
       if (mesh_.HasCorner(t, node) || !node_box_[node].Overlaps(triangle_box_[t])) continue;
       const Pair pair{false, node, t};
-      if (!Immobile(Nodes(pair))) candidates_.push_back(pair);
+      if (!Immobile(Nodes(pair))) found->push_back(pair);
     }
   }
   if (p > q) return;
-  near_.clear();
+  near->clear();
   for (int e : from.owned_edges) {
-    if (edge_box_[e].Overlaps(to_box)) near_.push_back(e);
+    if (edge_box_[e].Overlaps(to_box)) near->push_back(e);
   }
   for (int f : to.owned_edges) {
     if (!edge_box_[f].Overlaps(from_box)) continue;
-    for (int e : near_) {
+    for (int e : *near) {
       if ((p == q && f <= e) || mesh_.Adjacent(e, f) || !edge_box_[e].Overlaps(edge_box_[f])) continue;
       const Pair pair{true, std::min(e, f), std::max(e, f)};
-      if (!Immobile(Nodes(pair))) candidates_.push_back(pair);
+      if (!Immobile(Nodes(pair))) found->push_back(pair);
     }
   }
 }
@@ -392,43 +412,88 @@ bool SelfCollision<Real>::Immobile(const std::array<int, 4>& nodes) const {
          inverse_mass_[nodes[3]] == 0;
 }
 
-// Pairs closer than h at the start, moving together, are pushed apart along the line between
-// their closest points.
+// body(c, found) for every candidate c, in blocks shared among the threads, each block's
+// finds into a list of its own; the lists joined in the candidates' order.
 template <typename Real>
-void SelfCollision<Real>::Proximity() {
-  for (const Pair& pair : candidates_) {
-    const std::array<int, 4> n = Nodes(pair);
-    const std::array<Point, 4> start{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])};
-    if (ApartAlongAnAxis(pair.edges ? 2 : 1, start, thickness_)) continue;
-    const std::array<double, 4> k = ClosestWeights(pair.edges, start);
-    const Point gap = Gap(k, start);
-    const double distance = gap.norm();
-    if (distance >= thickness_ || distance == 0) continue;
-    const Point normal = gap / distance;
-    Push(n, k, normal, 0.1 * (thickness_ - distance) / dt_);
+template <typename Found, typename Body>
+void SelfCollision<Real>::ForEachCandidate(std::vector<std::vector<Found>>* blocks, std::vector<Found>* found,
+                                           const Body& body) const {
+  const int count = int(candidates_.size()), block_count = (count + kBlock - 1) / kBlock;
+  if (int(blocks->size()) < block_count) blocks->resize(block_count);
+  ParallelFor(block_count, threads_, [&](int block) {
+    std::vector<Found>& mine = (*blocks)[block];
+    mine.clear();
+    for (int c = block * kBlock; c < std::min(count, (block + 1) * kBlock); ++c) body(c, &mine);
+  });
+  found->clear();
+  for (int block = 0; block < block_count; ++block) {
+    found->insert(found->end(), (*blocks)[block].begin(), (*blocks)[block].end());
   }
 }
 
-// One pass of continuous detection over the candidates: each contact gets an impulse, or,
-// when `hold`, its nodes are held. Returns the number of contacts acted on. A pair that meets
-// while already parting along the normal (a graze, not a crossing) needs no impulse.
+// Pairs closer than h at the start, moving together, are pushed apart along the line between
+// their closest points. Which pairs are close depends on the start alone, so it is found in
+// parallel; the impulses follow in the candidates' order.
+template <typename Real>
+void SelfCollision<Real>::Proximity() {
+  ForEachCandidate(&proximate_blocks_, &proximate_, [this](int c, std::vector<Proximate>* found) {
+    const Pair& pair = candidates_[c];
+    const std::array<int, 4> n = Nodes(pair);
+    const std::array<Point, 4> start{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])};
+    if (ApartAlongAnAxis(pair.edges ? 2 : 1, start, thickness_)) return;
+    const std::array<double, 4> k = ClosestWeights(pair.edges, start);
+    const Point gap = Gap(k, start);
+    const double distance = gap.norm();
+    if (distance >= thickness_ || distance == 0) return;
+    found->push_back({c, k, gap / distance, 0.1 * (thickness_ - distance) / dt_});
+  });
+  for (const Proximate& close : proximate_)
+    Push(Nodes(candidates_[close.candidate]), close.k, close.normal, close.speed);
+}
+
+// When the pair's straight paths from start to end meet within the step, if they do.
+template <typename Real>
+std::optional<double> SelfCollision<Real>::ContactTime(const Pair& pair, const std::array<int, 4>& n) const {
+  const double tolerance = kContactTolerance * thickness_;
+  const Primitives points = PathsOf(n);
+  return pair.edges ? EdgeEdgeContact(points, tolerance) : PointTriangleContact(points, tolerance);
+}
+
+// One pass of continuous detection over the candidates, in their order: each contact gets an
+// impulse, or, when `hold`, its nodes are held. Returns the number of contacts acted on. A pair
+// that meets while already parting along the normal (a graze, not a crossing) needs no impulse.
+// An impulse moves the ends of the nodes it pushes, so a pair's contact is found as the ends
+// stand at its turn: first for every pair in parallel as they stand at the pass's start, then
+// again at its turn for a pair whose nodes an impulse has moved since (touched_).
 template <typename Real>
 int SelfCollision<Real>::Contacts(bool hold) {
-  const double tolerance = kContactTolerance * thickness_;
+  ForEachCandidate(&hit_blocks_, &hits_, [this](int c, std::vector<Hit>* found) {
+    const std::array<int, 4> n = Nodes(candidates_[c]);
+    if (Immobile(n)) return;
+    if (const std::optional<double> when = ContactTime(candidates_[c], n)) found->push_back({c, *when});
+  });
+  touched_.assign(start_.rows(), false);
+  const auto touched = [this](const std::array<int, 4>& n) {
+    return touched_[n[0]] || touched_[n[1]] || touched_[n[2]] || touched_[n[3]];
+  };
   int contacts = 0;
-  for (const Pair& pair : candidates_) {
+  auto next_hit = hits_.begin();
+  for (int c = 0; c < int(candidates_.size()); ++c) {
+    const Pair& pair = candidates_[c];
+    const bool hit_at_start = next_hit != hits_.end() && next_hit->candidate == c;
+    const std::optional<double> at_start = hit_at_start ? std::optional(next_hit->when) : std::nullopt;
+    if (hit_at_start) ++next_hit;
     const std::array<int, 4> n = Nodes(pair);
     if (Immobile(n)) continue;
-    const Primitives points{{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])},
-                            {End(n[0]), End(n[1]), End(n[2]), End(n[3])}};
-    const std::optional<double> when =
-        pair.edges ? EdgeEdgeContact(points, tolerance) : PointTriangleContact(points, tolerance);
+    const std::optional<double> when = touched(n) ? ContactTime(pair, n) : at_start;
     if (!when) continue;
     if (hold) {
       for (int node : n) Hold(node);
+      for (int node : n) touched_[node] = true;
       ++contacts;
       continue;
     }
+    const Primitives points = PathsOf(n);
     const std::array<Point, 4> at = points.At(*when);
     const std::array<double, 4> k = ClosestWeights(pair.edges, at);
     Point normal = pair.edges ? Point((at[1] - at[0]).cross(at[3] - at[2]))
@@ -437,6 +502,7 @@ int SelfCollision<Real>::Contacts(bool hold) {
     if (normal.squaredNorm() < 1e-24) normal = start_gap;  // parallel edges: part them as they began
     if (normal.dot(start_gap) < 0) normal = -normal;       // from the side each began on
     if (normal.squaredNorm() == 0 || !Push(n, k, normal.normalized(), 0.1 * thickness_ / dt_)) continue;
+    for (int node : n) touched_[node] = true;
     ++contacts;
     ++stats_.contacts;
   }

@@ -36,12 +36,18 @@
 // change to it threw nodes back faster than they came (at 256 x 192 end speeds gained 4 to
 // 9 m/s a step, until a spring stretched six-fold). So a correction never speeds a pair's
 // parting beyond the small separating speed, and a step where nothing comes close is left
-// unchanged bit for bit. The passes run in a fixed order on one thread: the same state gives
-// the same result at any thread count.
+// unchanged bit for bit.
+//
+// Threads (params.threads) share what reads and writes nothing another part needs: the normals
+// row by row, the leaves' boxes and cones, each patch pair's candidates (kept in the pairs'
+// order), and the detection of close pairs and of contacts in blocks of candidates. The
+// impulses go one by one in the candidates' order, and a contact found before an impulse moved
+// one of its nodes is found again: the same state gives the same result at any thread count.
 #pragma once
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "server/sim/cloth_mesh.hpp"
@@ -136,8 +142,26 @@ class SelfCollision {
   void CrossPairs(int a, int b, std::vector<std::array<int, 2>>* pairs) const;
   bool Separated(int p, int q) const;
   void Candidates(const std::vector<std::array<int, 2>>& patch_pairs);
-  void AddPairs(int p, int q);
+  void AddPairs(int p, int q, std::vector<int>* near, std::vector<Pair>* found) const;
+  /// Candidates a thread takes at a time in the detection passes.
+  static constexpr int kBlock = 256;
+  template <typename Found, typename Body>
+  void ForEachCandidate(std::vector<std::vector<Found>>* blocks, std::vector<Found>* found,
+                        const Body& body) const;
+  /// A candidate closer than h at the start: its weights, the normal and the parting speed it is due.
+  struct Proximate {
+    int candidate = 0;
+    std::array<double, 4> k{};
+    Point normal;
+    double speed = 0;
+  };
   void Proximity();
+  /// A candidate whose paths meet, and when (a fraction of the step).
+  struct Hit {
+    int candidate = 0;
+    double when = 0;
+  };
+  std::optional<double> ContactTime(const Pair& pair, const std::array<int, 4>& nodes) const;
   int Contacts(bool hold);
   bool HoldThoseInObstacles();
   std::array<int, 4> Nodes(const Pair& pair) const;
@@ -151,12 +175,18 @@ class SelfCollision {
   Point Integrated(int node) const { return Row(integrated_, node); }
   bool Moved(int node) const { return (end_.row(node) != integrated_.row(node)).any(); }
   Point Velocity(int node) const { return (End(node) - Start(node)) / dt_; }
+  /// The nodes' straight paths over the step.
+  Primitives PathsOf(const std::array<int, 4>& n) const {
+    return {{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])},
+            {End(n[0]), End(n[1]), End(n[2]), End(n[3])}};
+  }
 
   int cols_ = 0;
   ClothMesh mesh_;
   ClothPatches patches_;
   Obstacles obstacles_;
   double thickness_ = 0, dt_ = 0;
+  int threads_ = 1;  ///< params.threads: the same result at any count
 
   // Per step, per node: positions at the start and end (as corrected), the end as integrated,
   // the end velocity (as corrected, and as integrated), inverse mass (0 when pinned or held),
@@ -165,7 +195,8 @@ class SelfCollision {
   std::vector<double> inverse_mass_;
   std::vector<Box> node_box_;
   std::vector<Box> triangle_box_, edge_box_;  ///< of the patches a pair named (BoxPatch)
-  std::vector<char> boxed_;                   ///< per patch: whether BoxPatch has made its boxes
+  std::vector<char> boxed_;                   ///< per patch: whether a pair names it
+  std::vector<int> named_;                    ///< the patches pairs name, each once
   std::vector<int> leaf_region_;              ///< each patch's region
   std::vector<Box> region_box_;               ///< per region, its nodes' swept boxes together
   std::vector<Cone> region_cone_;             ///< per region
@@ -177,7 +208,13 @@ class SelfCollision {
   Eigen::ArrayXd normal_longest_, normal_curl_;
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
   std::vector<Pair> candidates_;
-  std::vector<int> near_;  ///< scratch: one patch's primitives inside another's box
+  std::vector<std::vector<Pair>> pair_candidates_;  ///< per patch pair, its candidates
+  std::vector<std::vector<int>> near_;  ///< per participant, scratch: one patch's primitives in another's box
+  std::vector<std::vector<Proximate>> proximate_blocks_;
+  std::vector<Proximate> proximate_;
+  std::vector<std::vector<Hit>> hit_blocks_;
+  std::vector<Hit> hits_;      ///< contacts as the ends stood when the pass began, in order
+  std::vector<char> touched_;  ///< per node: moved by an impulse or held in this pass
   SelfCollisionStats stats_;
 };
 

@@ -266,14 +266,14 @@ std::string Simulation<Real>::Advance(double* fastest) {
     const int until = n * pass / passes, from = done;
     for (; done < until; ++done) {
       integrator_->Substep(context, h, &state_);
-      PushOutOfObstacles(model_, obstacles, &state_);
+      PushOutOfObstacles(model_, obstacles, params.threads, &state_);
     }
     // A state already running away is the guard's to roll back, not worth colliding: its swept
     // boxes would cover everything.
     problem = Problem(fastest);
     if (problem.empty() && params_.self_collision) {
       const bool changed =
-          self_collision_->Resolve(model_, params_, (until - from) * h, step_start_, &state_);
+          self_collision_->Resolve(model_, params, (until - from) * h, step_start_, &state_);
       collision_stats_ += self_collision_->stats();
       if (changed) problem = Problem(fastest);
     }

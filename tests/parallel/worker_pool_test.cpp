@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -69,6 +70,28 @@ TEST(WorkerPool, ConcurrentAndNestedLoopsFinish) {
   nested();
   other.join();
   EXPECT_EQ(sum.load(), 2L * 200 * (31 * 32 / 2));
+}
+
+// A helper that stops inside its share (the kernel took its core: here, a body that sleeps) holds
+// back that index only: the caller takes the rest of its share once it has made no progress for
+// kStallSeconds.
+TEST(WorkerPool, AStalledShareIsTakenFromItsParticipant) {
+  WorkerPool pool;
+  constexpr int kHalf = 8;
+  std::vector<std::atomic<int>> ran_on(2 * kHalf);
+  for (auto& participant : ran_on) participant.store(-1);
+  pool.Run(2 * kHalf, 2, [&](int i, int participant) {
+    ran_on[i].store(participant);
+    if (i == 0) {  // the caller waits (up to 10 s) for the helper to be asleep in its first index
+      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (ran_on[kHalf].load() < 0 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+    }
+    if (i == kHalf && participant == 1) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  });
+  ASSERT_EQ(ran_on[kHalf].load(), 1) << "no helper joined";
+  int taken = 0;
+  for (int i = kHalf + 1; i < 2 * kHalf; ++i) taken += ran_on[i].load() == 0;
+  EXPECT_EQ(taken, kHalf - 1) << "the caller should have run the rest of the stalled share";
 }
 
 // The free functions: the same results as a plain loop.
