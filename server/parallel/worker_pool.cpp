@@ -75,7 +75,8 @@ WorkerPool::~WorkerPool() {
 
 // offer the loop => drain it here too => withdraw the offer => wait for the helpers inside
 void WorkerPool::Run(int count, int threads, const Body& body) {
-  const int participants = std::min({threads, count, kMaxWorkers + 1});
+  static const int cores = std::max(1, int(std::thread::hardware_concurrency()));
+  const int participants = std::min({threads, count, kMaxWorkers + 1, cores});
   Loop loop;
   loop.body = &body;
   loop.participants = std::max(1, participants);
