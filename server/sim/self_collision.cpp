@@ -127,11 +127,21 @@ void SelfCollision<Real>::Load(const ClothModel<Real>& model, const ClothState<R
 }
 
 template <typename Real>
+typename SelfCollision<Real>::Box SelfCollision<Real>::Box::Around(const Point& lo, const Point& hi) {
+  Box box{lo.cast<float>(), hi.cast<float>()};
+  for (int k = 0; k < 3; ++k) {
+    if (double(box.lo[k]) > lo[k]) box.lo[k] = std::nextafter(box.lo[k], -INFINITY);
+    if (double(box.hi[k]) < hi[k]) box.hi[k] = std::nextafter(box.hi[k], INFINITY);
+  }
+  return box;
+}
+
+template <typename Real>
 void SelfCollision<Real>::SweptBoxes() {
   const Point grow = Point::Constant(thickness_ / 2);  // two boxes overlap when within h
   node_box_.resize(start_.rows());
   for (int i = 0; i < int(start_.rows()); ++i) {
-    node_box_[i] = {Start(i).cwiseMin(End(i)) - grow, Start(i).cwiseMax(End(i)) + grow};
+    node_box_[i] = Box::Around(Start(i).cwiseMin(End(i)) - grow, Start(i).cwiseMax(End(i)) + grow);
   }
 }
 
@@ -223,7 +233,7 @@ void SelfCollision<Real>::RegionBounds() {
   region_cone_.resize(regions.size());
   ParallelFor(int(leaf_region_.size()), threads_, [&](int p) {
     const ClothPatch& patch = patches_.patches[p];
-    Box box{Point::Constant(INFINITY), Point::Constant(-INFINITY)};
+    Box box = Box::Empty();
     for (int node : patch.nodes) box = box.Joined(node_box_[node]);
     region_box_[leaf_region_[p]] = box;
     region_cone_[leaf_region_[p]] = PatchCone(patch);

@@ -104,8 +104,14 @@ class SelfCollision {
     bool edges = false;  ///< edge-edge; else point-triangle
     int a = 0, b = 0;    ///< node and triangle, or two edges
   };
+  /// An axis-aligned box in float, rounded outwards from the double extent it bounds, at half
+  /// the memory: it holds that extent, so a test in float finds every pair the double one would,
+  /// and the few it adds are farther apart than h, which the exact tests then reject (a result
+  /// does not change).
   struct Box {
-    Point lo, hi;
+    Eigen::Vector3f lo, hi;
+    static Box Around(const Point& lo, const Point& hi);
+    static Box Empty() { return {Eigen::Vector3f::Constant(INFINITY), Eigen::Vector3f::Constant(-INFINITY)}; }
     Box Joined(const Box& other) const { return {lo.cwiseMin(other.lo), hi.cwiseMax(other.hi)}; }
     bool Overlaps(const Box& other) const {
       return (lo.array() <= other.hi.array()).all() && (other.lo.array() <= hi.array()).all();
