@@ -191,8 +191,8 @@ ParameterTable::ParameterTable() {
       Real("solver_tolerance", "", 1e-8, 0.5, &SimParams::solver_tolerance,
            "implicit_euler: conjugate gradient stops at this residual relative to the right-hand side"),
       Integer("threads", 1, 64, &SimParams::threads,
-              "worker threads for the step and the frames; the step shares the flag among them from 4096 "
-              "nodes a thread"),
+              "worker threads for the step and the frames (no more run at once than the machine has "
+              "cores); the step shares the flag among them from 4096 nodes a thread"),
       Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, "STATE messages per second of simulated time",
            &Scene::service, &ServiceSettings::state_rate),
       Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120,
