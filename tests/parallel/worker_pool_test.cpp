@@ -72,22 +72,24 @@ TEST(WorkerPool, ConcurrentAndNestedLoopsFinish) {
   EXPECT_EQ(sum.load(), 2L * 200 * (31 * 32 / 2));
 }
 
-// A helper that stops inside its share (the kernel took its core: here, a body that sleeps) holds
-// back that index only: the caller takes the rest of its share once it has made no progress for
-// kStallSeconds.
+// A helper that stops inside its share (the kernel took its core: here, a body that waits until
+// the rest of its share has run elsewhere) holds back that index only: the caller takes the rest
+// of its share once it has made no progress for kStallSeconds.
 TEST(WorkerPool, AStalledShareIsTakenFromItsParticipant) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: a loop has no helper";
   WorkerPool pool;
   constexpr int kHalf = 8;
   std::vector<std::atomic<int>> ran_on(2 * kHalf);
   for (auto& participant : ran_on) participant.store(-1);
+  // Waits until index `i` has run somewhere, for at most 10 s.
+  const auto wait_for = [&](int i) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (ran_on[i].load() < 0 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+  };
   pool.Run(2 * kHalf, 2, [&](int i, int participant) {
     ran_on[i].store(participant);
-    if (i == 0) {  // the caller waits (up to 10 s) for the helper to be asleep in its first index
-      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-      while (ran_on[kHalf].load() < 0 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
-    }
-    if (i == kHalf && participant == 1) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    if (i == 0) wait_for(kHalf);  // the caller lets the helper reach its first index
+    if (i == kHalf && participant == 1) wait_for(2 * kHalf - 1);  // the helper stalls there
   });
   ASSERT_EQ(ran_on[kHalf].load(), 1) << "no helper joined";
   int taken = 0;
