@@ -1,6 +1,7 @@
 // Sending one command and waiting for its ACK. The command is resent with the same sequence
 // number until an answer comes or the timeout passes (LCM over UDP can lose either way); the
-// server applies a retried command once.
+// server applies a retried command once. Each send is dated anew and, with a key, signed anew
+// (command_mac.hpp), so that a server with keys tells a retry from a replay.
 #pragma once
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
 #include "messages/checked_decode.hpp"
+#include "messages/command_mac.hpp"
 #include "messages/utime.hpp"
 
 namespace flagsim {
@@ -33,15 +35,20 @@ class CommandClient {
  public:
   static constexpr double kRetryInterval = 0.5;  ///< s between resends
 
-  CommandClient(Bus& bus, const Channels& channels, double timeout_seconds);
+  /// `signer` stamps every command sent: unsigned by default.
+  CommandClient(Bus& bus, const Channels& channels, double timeout_seconds, CommandSigner signer = {});
+  ~CommandClient();  ///< stops listening for ACKs: a client may go before its bus
+  CommandClient(const CommandClient&) = delete;
+  CommandClient& operator=(const CommandClient&) = delete;
 
-  /// Fills in utime, client_id and sequence, publishes on `channel`, and waits for the ACK.
+  /// Fills in client_id and sequence, then on each send utime (and key_id and mac with a key),
+  /// publishes on `channel`, and waits for the ACK.
   template <class Command>
   CommandOutcome Send(const std::string& channel, Command command) {
     command.client_id = client_id_;
     command.sequence = ++sequence_;
     return SendRepeatedly(command.sequence, [&] {
-      command.utime = UnixMicros();
+      signer_.Stamp(channel, command);
       bus_.Publish(channel, command);
     });
   }
@@ -80,11 +87,13 @@ class CommandClient {
 
   Bus& bus_;
   double timeout_;
+  CommandSigner signer_;
   std::string client_id_;
   int64_t sequence_ = 0;
   int64_t awaited_ = -1;
   std::function<void()> while_waiting_;
   CommandOutcome outcome_;
+  size_t ack_subscription_ = 0;
 };
 
 }  // namespace flagsim

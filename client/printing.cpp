@@ -86,6 +86,18 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;
   if (!status.last_recovery.empty()) out << "last recovery:     " << status.last_recovery << "\n";
+  out << "authentication:    " << status.command_authentication << "\n";
+  const int64_t refused = status.commands_unsigned + status.commands_unknown_key + status.commands_bad_mac +
+                          status.commands_replayed + status.commands_stale;
+  if (refused > 0) {
+    std::snprintf(text, sizeof(text),
+                  "refused:           %lld unsigned, %lld unknown key, %lld bad MAC, %lld replayed, %lld stale\n",
+                  static_cast<long long>(status.commands_unsigned),
+                  static_cast<long long>(status.commands_unknown_key),
+                  static_cast<long long>(status.commands_bad_mac),
+                  static_cast<long long>(status.commands_replayed), static_cast<long long>(status.commands_stale));
+    out << text;
+  }
   std::snprintf(text, sizeof(text), "server:            id %016llx",
                 static_cast<unsigned long long>(status.server_id));
   out << text;

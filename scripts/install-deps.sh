@@ -17,6 +17,7 @@ packages=(
   libspdlog-dev                                  # server logging
   libzstd-dev libxxhash-dev                      # tile compression, image and state hashes
   libpng-dev                                     # snapshots and exported frames
+  libssl-dev                                     # signed commands: OpenSSL's HMAC-SHA-256 and random keys
   libboost-dev nlohmann-json3-dev libjpeg-dev    # the live view's gateway: HTTP/WebSocket, JSON, JPEG
   ffmpeg                                         # flagctl export's MP4 and GIF encoder; ffprobe for its test
   libgtest-dev libbenchmark-dev                  # tests and benchmarks

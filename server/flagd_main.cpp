@@ -15,6 +15,7 @@
 
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
+#include "messages/command_key.hpp"
 #include "server/render_command.hpp"
 #include "server/replay_command.hpp"
 #include "server/scene/parameter_table.hpp"
@@ -37,9 +38,25 @@ struct Options {
   flagsim::RenderRequest render;
   std::string replay_log;  ///< flagd replay LOG
   flagsim::ReplayOptions replay;
-  double render_fps = 0;   ///< 0: the scene's frame_rate
-  int render_threads = 0;  ///< 0: the scene's threads
+  double render_fps = 0;               ///< 0: the scene's frame_rate
+  int render_threads = 0;              ///< 0: the scene's threads
+  std::vector<std::string> key_files;  ///< --key-file: commands must be signed with one of their keys
 };
+
+/// Every key in the --key-file files. Throws std::runtime_error naming the file when one cannot
+/// be read or has loose permissions, and a key name found twice.
+std::vector<flagsim::CommandKey> ReadKeys(const std::vector<std::string>& paths) {
+  std::vector<flagsim::CommandKey> keys;
+  for (const std::string& path : paths) {
+    for (flagsim::CommandKey& key : flagsim::ReadKeyFile(path)) {
+      for (const flagsim::CommandKey& earlier : keys)
+        if (earlier.name == key.name)
+          throw std::runtime_error("key file " + path + ": key '" + key.name + "' is in an earlier file too");
+      keys.push_back(std::move(key));
+    }
+  }
+  return keys;
+}
 
 /// The scene with --set overrides, each checked by the parameter table. Throws SceneError.
 flagsim::Scene BuildScene(const Options& options) {
@@ -126,6 +143,11 @@ int main(int argc, char** argv) {
   app.add_option("--record-inputs", options.server.inputs_log,
                  "also write what a replay needs (each applied command, the checkpoints) into this LCM "
                  "log, for `flagd replay`");
+  app.add_option(
+         "--key-file", options.key_files,
+         "take only commands signed with a key in this file (flagctl keygen -o FILE makes one; "
+         "readable by its owner only); repeatable. Without it, anyone on the bus may steer the server")
+      ->check(CLI::ExistingFile);
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
@@ -170,6 +192,12 @@ int main(int argc, char** argv) {
   }
 
   try {
+    options.server.command_keys = ReadKeys(options.key_files);
+  } catch (const std::exception& error) {
+    std::cerr << "flagd: " << error.what() << "\n";
+    return 2;
+  }
+  try {
     flagsim::Bus bus(flagsim::Bus::WithReceiveBuffer(options.lcm_url, 1 << 20));
     const flagsim::Channels channels(options.prefix);
     flagsim::Server server(bus, channels, scene, options.server);
@@ -178,6 +206,7 @@ int main(int argc, char** argv) {
     spdlog::info("flagd: scene '{}' ({}x{} nodes), {} on {} with prefix {}", scene.name, scene.sim.cols,
                  scene.sim.rows, options.server.fast ? "as fast as possible" : "in real time", bus.url(),
                  channels.prefix);
+    spdlog::info("flagd: command authentication: {}", server.authentication());
     if (!options.server.inputs_log.empty())
       spdlog::info("flagd: recording its inputs to {}", options.server.inputs_log);
     server.Run(g_stop);

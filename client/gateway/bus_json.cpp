@@ -118,6 +118,12 @@ json StatusJson(const status_t& s) {
           {"commands_accepted", s.commands_accepted},
           {"commands_rejected", s.commands_rejected},
           {"messages_dropped", s.messages_dropped},
+          {"command_authentication", s.command_authentication},
+          {"commands_unsigned", s.commands_unsigned},
+          {"commands_unknown_key", s.commands_unknown_key},
+          {"commands_bad_mac", s.commands_bad_mac},
+          {"commands_replayed", s.commands_replayed},
+          {"commands_stale", s.commands_stale},
           {"recoveries", s.recoveries},
           {"last_recovery", s.last_recovery},
           {"server_id", std::to_string(s.server_id)},  // a string: 63 bits do not fit a JavaScript number

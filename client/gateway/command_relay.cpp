@@ -16,8 +16,8 @@ std::string NewGatewayClientId() {
   return id;
 }
 
-CommandRelay::CommandRelay(Bus& bus, std::string client_id, double timeout)
-    : bus_(bus), client_id_(std::move(client_id)), timeout_(timeout) {}
+CommandRelay::CommandRelay(Bus& bus, std::string client_id, double timeout, CommandSigner signer)
+    : bus_(bus), client_id_(std::move(client_id)), timeout_(timeout), signer_(std::move(signer)) {}
 
 void CommandRelay::OnAck(const ack_t& ack) {
   if (ack.client_id != client_id_) return;

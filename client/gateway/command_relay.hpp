@@ -12,6 +12,7 @@
 #include "client/command_client.hpp"
 #include "flagsim/ack_t.hpp"
 #include "messages/bus.hpp"
+#include "messages/command_mac.hpp"
 
 namespace flagsim::gateway {
 
@@ -20,8 +21,9 @@ class CommandRelay {
   static constexpr double kRetryInterval = CommandClient::kRetryInterval;  ///< s
   using Done = std::function<void(const CommandOutcome& outcome, int64_t sequence)>;
 
-  /// `client_id` goes into every command; ACKs for other ids are not ours.
-  CommandRelay(Bus& bus, std::string client_id, double timeout);
+  /// `client_id` goes into every command; ACKs for other ids are not ours. `signer` stamps each
+  /// send (command_mac.hpp): unsigned by default.
+  CommandRelay(Bus& bus, std::string client_id, double timeout, CommandSigner signer = {});
 
   /// Stamps `command` (client id, sequence, time), publishes it on `channel`, and calls `done`
   /// on its ACK or at the timeout. Returns the sequence number.
@@ -31,7 +33,7 @@ class CommandRelay {
     command.sequence = ++sequence_;
     Pending pending;
     pending.publish = [this, channel, command]() mutable {
-      command.utime = UnixMicros();
+      signer_.Stamp(channel, command);
       bus_.Publish(channel, command);
     };
     pending.done = std::move(done);
@@ -64,6 +66,7 @@ class CommandRelay {
   Bus& bus_;
   std::string client_id_;
   double timeout_;
+  CommandSigner signer_;
   int64_t sequence_ = 0;
   std::map<int64_t, Pending> pending_;  ///< by sequence
 };

@@ -49,7 +49,7 @@ Gateway::Gateway(Bus& bus, const Channels& channels, GatewayOptions options)
     : bus_(bus),
       channels_(channels),
       options_(std::move(options)),
-      relay_(bus, NewGatewayClientId(), options_.command_timeout),
+      relay_(bus, NewGatewayClientId(), options_.command_timeout, options_.signer),
       recorder_(bus, channels.AllChannels(), options_.record_directory) {
   feeds_[kAcksChannel] = ChannelFeed(kAcksKept);
   started_ = status_window_start_ = next_status_ = options_.clock();

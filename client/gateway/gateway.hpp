@@ -27,6 +27,7 @@
 #include "flagsim/params_t.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
+#include "messages/command_mac.hpp"
 #include "messages/utime.hpp"
 
 namespace flagsim::gateway {
@@ -36,6 +37,7 @@ struct GatewayOptions {
   double command_timeout = 2.0;  ///< s to wait for a command's ACK
   std::string record_directory = "recordings";
   std::function<double()> clock = MonotonicSeconds;  ///< s, monotonic; tests drive their own
+  CommandSigner signer;  ///< signs the commands it relays, for a server with keys (flagctl --key-file)
 };
 
 /// A connected client as the gateway sees it; the transport implements it.

@@ -114,6 +114,7 @@ int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
   }
   GatewayOptions gateway_options;
   gateway_options.command_timeout = options.command_timeout;
+  gateway_options.signer = options.signer;
   gateway_options.record_directory = options.record_directory;
   gateway_options.name = "flagsim (" + channels.prefix + " on " + bus.url() + ")";
   Gateway gateway(bus, channels, gateway_options);

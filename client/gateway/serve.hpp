@@ -9,6 +9,7 @@
 
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
+#include "messages/command_mac.hpp"
 
 namespace flagsim::gateway {
 
@@ -18,6 +19,7 @@ struct ServeOptions {
   std::vector<std::string> allow_origins;
   std::string record_directory = "recordings";
   double command_timeout = 2.0;  ///< s to wait for a command's ACK
+  CommandSigner signer;          ///< signs the commands it relays (flagctl --key-file)
 };
 
 /// Serves until a signal. Prints the URLs to open on stdout. Returns 0, or 1 if it cannot

@@ -24,6 +24,13 @@ std::string CheckClientId(const std::string& client_id) {
   return "";
 }
 
+/// `text` with every byte that is not printable ASCII as '?': fit for a log line.
+std::string Printable(std::string text) {
+  for (char& c : text)
+    if (c < 0x20 || c > 0x7e) c = '?';
+  return text;
+}
+
 /// What an accepted command set: the wind, the camera, parameters by name.
 struct CommandSets {
   bool wind = false;
@@ -50,8 +57,9 @@ std::string TimelineNote(const sim::Timeline& timeline, const CommandSets& sets)
 
 }  // namespace
 
-CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats)
-    : bus_(bus), channels_(channels), session_(session), stats_(stats) {
+CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats,
+                             std::vector<CommandKey> keys)
+    : bus_(bus), channels_(channels), session_(session), stats_(stats), authenticator_(std::move(keys)) {
   Subscribe<wind_command_t>(channels.wind, &CommandIntake::ApplyWind);
   Subscribe<param_command_t>(channels.param, &CommandIntake::ApplyParams);
   Subscribe<refresh_request_t>(channels.refresh, &CommandIntake::ApplyRefresh);
@@ -70,13 +78,16 @@ void CommandIntake::Subscribe(const std::string& channel,
       kQueueCapacity);
 }
 
-// bytes => decode (checked) => duplicate? => validate and apply => ACK
+// bytes => decode (checked) => authentic? => duplicate? => validate and apply => ACK
 template <class Command>
 void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, size_t size,
                               std::string (CommandIntake::*apply)(const Command&)) {
   std::string error;
   const std::optional<Command> command = wire::CheckedDecode<Command>(data, size, kMaxCommandBytes, &error);
   if (!command) return Drop(channel, error);
+  const CommandAuthenticator::Verdict verdict = authenticator_.Check(channel, *command, UnixMicros());
+  if (verdict.refusal != CommandAuthenticator::Refusal::kNone)
+    return Refuse(channel, command->client_id, command->sequence, verdict);
 
   const auto previous = last_ack_.find(command->client_id);
   if (previous != last_ack_.end() && previous->second.sequence == command->sequence) {
@@ -99,7 +110,7 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   if (ack.accepted) {
     // What changes the session goes into the journal; a REFRESH changes nothing.
     if (journal_ != nullptr && channel != channels_.refresh)
-      journal_->Applied(session_, channel, data, size, UnixMicros());
+      journal_->Applied(session_, channel, data, size, {command->client_id, command->key_id}, UnixMicros());
     ++stats_.commands_accepted;
     spdlog::info("{} from {} #{}: accepted at step {}", ack.channel, ack.client_id, ack.sequence, ack.step);
   } else {
@@ -192,6 +203,39 @@ std::string CommandIntake::ApplyKeyframe(const keyframe_command_t& command) {
   if (problem.empty()) problem = session_.ApplyTimeline(edit);
   timeline_changed_ |= problem.empty();
   return problem;
+}
+
+static_assert(std::tuple_size_v<decltype(ServerStats::commands_refused)> ==
+              CommandAuthenticator::kRefusalKinds);
+
+// Counted always; answered and logged up to kRefusalAnswersPerSecond, the log naming the key and
+// client but never anything secret.
+void CommandIntake::Refuse(const std::string& channel, const std::string& client_id, int64_t sequence,
+                           const CommandAuthenticator::Verdict& verdict) {
+  ++stats_.commands_refused[static_cast<size_t>(verdict.refusal)];
+  const double now = MonotonicSeconds();
+  if (now - refusal_second_ >= 1.0) {
+    if (refusals_in_second_ > kRefusalAnswersPerSecond)
+      spdlog::warn("{} more command(s) refused in that second, counted but not answered",
+                   refusals_in_second_ - kRefusalAnswersPerSecond);
+    refusal_second_ = now;
+    refusals_in_second_ = 0;
+  }
+  if (++refusals_in_second_ > kRefusalAnswersPerSecond) return;
+  ack_t ack;
+  ack.client_id = Printable(client_id.substr(0, kMaxClientIdLength));
+  ack.sequence = sequence;
+  ack.channel = channels_.Unprefixed(channel);
+  ack.accepted = false;
+  ack.reason = verdict.reason;
+  ack.step = session_.simulation().state().step;
+  spdlog::warn("{} from {} #{}: refused: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
+  ack.utime = UnixMicros();
+  if (presence_ != nullptr) {
+    ack.server_id = presence_->id();
+    ack.other_servers = presence_->others();
+  }
+  bus_.Publish(channels_.ack, ack);
 }
 
 void CommandIntake::Drop(const std::string& channel, const std::string& reason) {

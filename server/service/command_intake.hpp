@@ -1,8 +1,14 @@
 // Command intake: the server's command channels (WIND, PARAM, CAMERA, KEYFRAME, REFRESH). Each message is
-// decoded from raw bytes with every length checked (wire::CheckedDecode), answered on ACK, and applied to the
-// session only if valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the
-// server. A retry (same client id and sequence) gets the first answer again and is not
-// applied twice.
+// decoded from raw bytes with every length checked (wire::CheckedDecode), checked for its signature when
+// the server has keys (command_authenticator.hpp), answered on ACK, and applied to the session only if
+// valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the server. A retry
+// (same client id and sequence) gets the first answer again and is not applied twice.
+//
+//   bytes => decode => signed, authentic, fresh, new? => retry? => validate and apply => ACK
+//
+// Refused commands (unsigned, forged, stale, replayed) are counted by kind and change nothing; at
+// most kRefusalAnswersPerSecond of them are answered, so that a flood of forgeries costs the server
+// little more than their MACs and the bus no more than that many answers a second.
 //
 // Accepted WIND and PARAM commands are answered kSettleSteps steps later: if the guard had to
 // recover the flag in between, the ACK says what it found and did (the command is still
@@ -24,6 +30,8 @@
 #include "flagsim/wind_command_t.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
+#include "messages/command_key.hpp"
+#include "server/service/command_authenticator.hpp"
 #include "server/service/journal.hpp"
 #include "server/service/server_presence.hpp"
 #include "server/service/server_stats.hpp"
@@ -37,8 +45,12 @@ class CommandIntake {
   static constexpr size_t kMaxClientIdLength = 64;
   static constexpr int kQueueCapacity = 256;  ///< per channel, between two Handle() calls
 
-  /// Subscribes to the command channels on `bus`; handlers run inside bus.Handle().
-  CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats);
+  static constexpr int kRefusalAnswersPerSecond = 50;
+
+  /// Subscribes to the command channels on `bus`; handlers run inside bus.Handle(). With `keys`,
+  /// only commands signed with one of them are taken.
+  CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats,
+                std::vector<CommandKey> keys = {});
 
   /// True once after any accepted command that changed parameters (PARAMS is due).
   bool TakeParamsChanged() { return std::exchange(params_changed_, false); }
@@ -55,6 +67,9 @@ class CommandIntake {
   void SetJournal(Journal* journal) { journal_ = journal; }
   /// Whose id, and how many other servers, every ACK states (server_presence.hpp), if anyone's.
   void SetPresence(const ServerPresence* presence) { presence_ = presence; }
+
+  /// For STATUS: whether and how commands are authenticated.
+  std::string Authentication() const { return authenticator_.Describe(); }
 
   /// Once after REFRESH requests: the latest request id (a full STATE and PARAMS and a
   /// keyframe are due); -1 when none came.
@@ -74,6 +89,8 @@ class CommandIntake {
   std::string ApplyKeyframe(const keyframe_command_t& command);
 
   void Drop(const std::string& channel, const std::string& reason);
+  void Refuse(const std::string& channel, const std::string& client_id, int64_t sequence,
+              const CommandAuthenticator::Verdict& verdict);
   void Answer(ack_t ack, int64_t recoveries_before);
 
   /// An accepted command whose answer waits for the flag to settle under it.
@@ -89,6 +106,7 @@ class CommandIntake {
   ServerStats& stats_;
   Journal* journal_ = nullptr;
   const ServerPresence* presence_ = nullptr;
+  CommandAuthenticator authenticator_;
   std::map<std::string, ack_t> last_ack_;  ///< per client id: the answer to its latest command
   std::vector<Settling> settling_;         ///< in the order they were applied
   bool params_changed_ = false;
@@ -97,6 +115,8 @@ class CommandIntake {
   int64_t refresh_request_ = -1;
   double last_drop_log_ = -1;  ///< wall s of the last logged drop (drops are logged once a second)
   int64_t drops_since_log_ = 0;
+  double refusal_second_ = -1;      ///< wall s when the current second of refusals began
+  int64_t refusals_in_second_ = 0;  ///< refusals in it: answered and logged up to the limit
 };
 
 }  // namespace flagsim

@@ -15,12 +15,14 @@ void Journal::Refresh(const Session& session, int64_t utime) { PublishCheckpoint
 void Journal::End(const Session& session, int64_t utime) { PublishCheckpoint(session, "end", utime); }
 
 void Journal::Applied(const Session& session, const std::string& channel, const uint8_t* data, size_t size,
-                      int64_t utime) {
+                      const Sender& sender, int64_t utime) {
   if (publisher_ == nullptr) return;
   applied_command_t message{};
   message.utime = utime;
   message.step = session.simulation().state().step;
   message.channel = channels_.Unprefixed(channel);
+  message.client_id = sender.client_id;
+  message.key_id = sender.key_id;
   message.data.assign(data, data + size);
   message.num_bytes = static_cast<int32_t>(size);
   publisher_->Publish(channels_.applied, message);

@@ -38,9 +38,14 @@ class Journal {
   /// The session's end (the server stopping): its last CHECKPOINT, so that a replay of a log
   /// that runs to the end checks the end too.
   void End(const Session& session, int64_t utime);
+  /// Who sent a command: its client id, and the key that signed it ("" unsigned).
+  struct Sender {
+    std::string client_id;
+    std::string key_id;
+  };
   /// A command `session` took at its current step: `channel` with the prefix, `data` as it came.
   void Applied(const Session& session, const std::string& channel, const uint8_t* data, size_t size,
-               int64_t utime);
+               const Sender& sender, int64_t utime);
 
  private:
   void PublishCheckpoint(const Session& session, const std::string& reason, int64_t utime);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "server/scene/parameter_table.hpp"
+#include "server/service/command_authenticator.hpp"
 #include "server/sim/integrator.hpp"
 
 namespace flagsim {
@@ -139,6 +140,13 @@ status_t MakeStatusMessage(const Session& session, const ServerStats& stats, con
   message.commands_accepted = stats.commands_accepted;
   message.commands_rejected = stats.commands_rejected;
   message.messages_dropped = stats.messages_dropped;
+  using Refusal = CommandAuthenticator::Refusal;
+  const auto refused = [&stats](Refusal refusal) { return stats.commands_refused[size_t(refusal)]; };
+  message.commands_unsigned = refused(Refusal::kUnsigned);
+  message.commands_unknown_key = refused(Refusal::kUnknownKey);
+  message.commands_bad_mac = refused(Refusal::kBadMac);
+  message.commands_replayed = refused(Refusal::kReplayed);
+  message.commands_stale = refused(Refusal::kStale);
   message.recoveries = simulation.recoveries();
   message.last_recovery = simulation.last_guard_event().Describe();
   return message;

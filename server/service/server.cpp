@@ -29,7 +29,7 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
                   ? nullptr
                   : std::make_unique<InputsLog>(bus, options.inputs_log, UnixMicros())),
       journal_(inputs_ ? static_cast<Publisher*>(inputs_.get()) : &bus, channels),
-      intake_(bus, channels, session_, stats_),
+      intake_(bus, channels, session_, stats_, options.command_keys),
       paced_(bus),
       frames_([this](const EncodedFrame& frame) { PublishFrame(frame); }) {
   intake_.SetJournal(&journal_);
@@ -196,6 +196,7 @@ void Server::PublishStatus(double now) {
   status_t status = MakeStatusMessage(session_, stats_, window, UnixMicros());
   status.server_id = presence_.id();
   status.other_servers = presence_.others();
+  status.command_authentication = intake_.Authentication();
   bus_.Publish(channels_.status, status);
   stats_.ResetWindow();
   window_wall_start_ = now;

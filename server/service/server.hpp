@@ -23,9 +23,11 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
+#include "messages/command_key.hpp"
 #include "messages/utime.hpp"
 #include "server/scene/scene.hpp"
 #include "server/service/boundary_schedule.hpp"
@@ -45,6 +47,7 @@ struct ServerOptions {
   double duration = 0;     ///< s of simulated time to run, 0 = until stopped
   std::string inputs_log;  ///< if set, the journal also goes into this LCM log (inputs_log.hpp)
   std::function<double()> clock = MonotonicSeconds;  ///< s, monotonic: the loop's time
+  std::vector<CommandKey> command_keys;  ///< if any, commands must be signed with one (--key-file)
 };
 
 class Server {
@@ -67,6 +70,8 @@ class Server {
   const Session& session() const { return session_; }
   const ServerStats& stats() const { return stats_; }
   const ServerPresence& presence() const { return presence_; }
+  /// Whether and how commands are authenticated, as STATUS says it.
+  std::string authentication() const { return intake_.Authentication(); }
 
   static constexpr double kMaxCatchUp = 0.1;  ///< s of wall time a late loop may step to catch up
 

@@ -1,6 +1,7 @@
 // Counters and timings the server reports in STATUS.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace flagsim {
@@ -10,6 +11,8 @@ struct ServerStats {
   int64_t commands_accepted = 0;  ///< valid commands applied
   int64_t commands_rejected = 0;  ///< decoded but invalid: answered with a reason
   int64_t messages_dropped = 0;   ///< undecodable bytes on a command channel: no answer possible
+  /// Commands refused by their signature, by CommandAuthenticator::Refusal (index 0 unused).
+  std::array<int64_t, 6> commands_refused{};
   int64_t frames_skipped = 0;     ///< frames due but not drawn: the publisher or the loop was behind
 
   // Since the last STATUS (reset each time one is published).

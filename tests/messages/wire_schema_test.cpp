@@ -104,8 +104,8 @@ TEST(WireSchema, RejectsTrailingBytes) {
 
 /// Offset of param_command_t's num_assignments in SomeParamCommand's encoding.
 size_t CountOffset() {
-  // fingerprint 8, utime 8, client_id 4 + 12, sequence 8, reset_to_scene 1
-  return 8 + 8 + 4 + std::string("test-client").size() + 1 + 8 + 1;
+  // fingerprint 8, utime 8, client_id 4 + 12, sequence 8, key_id "" 4 + 1, mac 32, reset_to_scene 1
+  return 8 + 8 + 4 + std::string("test-client").size() + 1 + 8 + 5 + 32 + 1;
 }
 
 TEST(WireSchema, RejectsHugeAndNegativeCounts) {

@@ -58,7 +58,7 @@ void Record(const std::string& path, const Recording& recording) {
   const auto command = [&](const std::string& channel, const std::vector<uint8_t>& bytes) {
     ASSERT_EQ(ApplyCommandBytes(channels.Unprefixed(channel), bytes, &session), "");
     if (session.simulation().state().step >= recording.record_from)
-      journal.Applied(session, channel, bytes.data(), bytes.size(), log.utime());
+      journal.Applied(session, channel, bytes.data(), bytes.size(), {"replay-test", ""}, log.utime());
   };
   for (int64_t step = 0; step < recording.steps; ++step) {
     log.AdvanceTo(session.simulation().state().time);
