@@ -68,7 +68,7 @@ int Report(const Link& link, const CommandOutcome& outcome) {
 
 int Wind(const Globals& globals, const std::vector<double>& velocity, double gust, double ramp) {
   Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout);
+  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
   wind_command_t command{};
   for (int k = 0; k < 3; ++k) command.velocity[k] = velocity[k];
   command.gust = gust;
@@ -90,13 +90,13 @@ int Set(const Globals& globals, const std::vector<std::string>& assignments, boo
   }
   command.num_assignments = static_cast<int32_t>(command.names.size());
   Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout);
+  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
   return Report(link, client.Send(link.channels.param, command));
 }
 
 int Refresh(const Globals& globals) {
   Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout);
+  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
   std::optional<state_t> state;
   SubscribeDecoded<state_t>(link.bus, link.channels.state, [&state](const state_t& s) { state = s; });
   const CommandOutcome outcome = client.Send(link.channels.refresh, refresh_request_t{});
@@ -192,7 +192,7 @@ int Watch(const Globals& globals, double duration) {
 int Snapshot(const Globals& globals, const std::string& path) {
   constexpr double kRefreshAnswerWait = 1.0;  // s
   Link link(globals);
-  CommandClient client(link.bus, link.channels, std::min(globals.timeout, kRefreshAnswerWait));
+  CommandClient client(link.bus, link.channels, std::min(globals.timeout, kRefreshAnswerWait), globals.signer);
   TileAssembler assembler;
   bool counting = false;  // frames count: after our request was answered, or with nobody answering
   bool complete = false, keyframe_incomplete = false;
@@ -248,13 +248,13 @@ int Snapshot(const Globals& globals, const std::string& path) {
 
 int Camera(const Globals& globals, camera_command_t command) {
   Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout);
+  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
   return Report(link, client.Send(link.channels.camera, command));
 }
 
 int SendKeyframe(const Globals& globals, const keyframe_command_t& command) {
   Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout);
+  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
   return Report(link, client.Send(link.channels.keyframe, command));
 }
 
@@ -280,7 +280,7 @@ int Record(const Globals& globals, const std::string& path, double duration) {
   // A keyframe request first: the server answers with a CHECKPOINT and a full frame, so the log
   // replays (flagd replay) and exports (flagctl export) from its beginning. Recorded meanwhile;
   // nobody may answer (a log playing back), and the recording goes on regardless.
-  CommandClient(link.bus, link.channels, std::min(globals.timeout, 1.0))
+  CommandClient(link.bus, link.channels, std::min(globals.timeout, 1.0), globals.signer)
       .Send(link.channels.refresh, refresh_request_t{});
   while (!g_stop.load() && !recorder->failed()) {
     const double now = MonotonicSeconds();

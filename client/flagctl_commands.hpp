@@ -11,6 +11,7 @@
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
 #include "messages/channels.hpp"
+#include "messages/command_mac.hpp"
 
 namespace flagsim {
 
@@ -24,6 +25,7 @@ struct Globals {
   std::string lcm_url;
   std::string prefix = Channels::kDefaultPrefix;
   double timeout = 2.0;  ///< s to wait for an answer
+  CommandSigner signer;  ///< signs every command sent (--key-file); unsigned by default
 };
 
 int Wind(const Globals& globals, const std::vector<double>& velocity, double gust, double ramp);
@@ -51,6 +53,9 @@ struct ExportRequest {
 };
 /// The frames in a log, assembled and hash-checked, into PNGs or a video (flagctl_export.cpp).
 int Export(const Globals& globals, const ExportRequest& request);
+
+/// A new key file at `path` holding one key named `name` (flagctl_keygen.cpp).
+int Keygen(const std::string& path, const std::string& name);
 
 /// The live view's gateway, until interrupted (flagctl_serve.cpp).
 int Serve(const Globals& globals, const gateway::ServeOptions& options);

@@ -11,6 +11,7 @@
 #include "client/flagctl_commands.hpp"
 #include "client/flagctl_keyframe.hpp"
 #include "messages/channels.hpp"
+#include "messages/command_key.hpp"
 
 namespace {
 
@@ -32,6 +33,19 @@ int main(int argc, char** argv) {
   app.add_option("--prefix", globals.prefix, "channel prefix of the server")->capture_default_str();
   app.add_option("--timeout", globals.timeout, "seconds to wait for an answer")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  std::string key_file;
+  app.add_option("--key-file", key_file,
+                 "sign every command with the first key in this file (flagctl keygen), for a server "
+                 "started with --key-file; also $FLAGSIM_KEY_FILE")
+      ->envname("FLAGSIM_KEY_FILE");
+
+  std::string keygen_path, keygen_name = "flagsim";
+  CLI::App* keygen = app.add_subcommand(
+      "keygen", "write a new key file for signed commands (flagd --key-file, flagctl --key-file)");
+  keygen->add_option("-o,--output", keygen_path, "the key file to create (never overwritten; mode 600)")
+      ->required();
+  keygen->add_option("--name", keygen_name, "the key's name, which commands carry and logs show")
       ->capture_default_str();
 
   std::vector<double> velocity;
@@ -198,6 +212,15 @@ int main(int argc, char** argv) {
   for (size_t k = 0; k < point.size() && k < 3; ++k) camera_command.vector[k] = point[k];
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+  if (keygen->parsed()) return Keygen(keygen_path, keygen_name);
+  if (!key_file.empty()) {
+    try {
+      globals.signer = CommandSigner(ReadKeyFile(key_file).front());
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "flagctl: %s\n", error.what());
+      return kFailed;
+    }
+  }
 
   try {
     const std::string command = app.get_subcommands().front()->get_name();

@@ -14,6 +14,7 @@ int Serve(const Globals& globals, const gateway::ServeOptions& options) {
   const Channels channels(globals.prefix);
   gateway::ServeOptions serve = options;
   serve.command_timeout = globals.timeout;
+  serve.signer = globals.signer;
   return gateway::Serve(bus, channels, serve);
 }
 
