@@ -208,7 +208,7 @@ void SelfCollision<Real>::CellNormals(const Positions& x, int top, int bottom, i
 // n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and |n(t)| <= max(|n0|, |n1|) + curl / 4. The
 // least of n(t) . d / |n(t)| over the triangles is the cone's cosine.
 template <typename Real>
-typename SelfCollision<Real>::Cone SelfCollision<Real>::PatchCone(const ClothPatch& patch) const {
+NormalCone SelfCollision<Real>::PatchCone(const ClothPatch& patch) const {
   Point sum = Point::Zero();
   for (int t : patch.triangles) sum += Row(normal_start_, t) + Row(normal_end_, t);
   const double length = sum.norm();
@@ -242,54 +242,8 @@ void SelfCollision<Real>::RegionBounds() {
     const PatchRegion& region = regions[r];
     if (region.leaf()) continue;
     region_box_[r] = region_box_[region.left].Joined(region_box_[region.right]);
-    region_cone_[r] = Union(region_cone_[region.left], region_cone_[region.right]);
+    region_cone_[r] = NormalCone::Union(region_cone_[region.left], region_cone_[region.right]);
   }
-}
-
-// The smallest cone holding both. With beta the angle between the axes and ta, tb the cones'
-// half-angles (narrow, so under 90 degrees): if beta + tb <= ta, a holds b (and the other way
-// round); else the union's half-angle is s / 2 with s = beta + ta + tb, narrow only when s is
-// under 180 degrees, and its axis turns from a's towards b's by s / 2 - ta. The angles are
-// carried as cosines and sines, summed by cos(x + y) = cx cy - sx sy, sin(x + y) = sx cy + cx sy
-// and halved by cos^2(s / 2) = (1 + cos s) / 2: square roots, no inverse trigonometry.
-template <typename Real>
-typename SelfCollision<Real>::Cone SelfCollision<Real>::Union(const Cone& a, const Cone& b) {
-  const ConeSum sum = Sum(a, b);
-  if (sum.holder != nullptr) return *sum.holder;
-  if (sum.sin_s <= 0) return {a.axis};  // s in [180, 360) degrees, or either cone was not narrow
-  // s / 2, and the turn s / 2 - ta; the axis is sin(beta - turn) a + sin(turn) b, normalised.
-  const double ch = std::sqrt((1 + sum.cos_s) / 2), sh = std::sqrt((1 - sum.cos_s) / 2);
-  const double st = sh * a.cos_half - ch * a.sin_half, ct = ch * a.cos_half + sh * a.sin_half;
-  const Point axis = (sum.sin_beta * ct - sum.cos_beta * st) * a.axis + st * b.axis;
-  return {axis.normalized(), ch, sh};
-}
-
-// Union(a, b).Narrow() without the union's axis.
-template <typename Real>
-bool SelfCollision<Real>::NarrowTogether(const Cone& a, const Cone& b) {
-  const ConeSum sum = Sum(a, b);
-  return sum.holder != nullptr ? sum.holder->Narrow() : sum.sin_s > 0;
-}
-
-// Where Union starts: the angle beta between the axes; the cone holding the other, if one does;
-// else s = beta + ta + tb. Either cone open: s is reported as 180 degrees.
-template <typename Real>
-typename SelfCollision<Real>::ConeSum SelfCollision<Real>::Sum(const Cone& a, const Cone& b) {
-  ConeSum sum;
-  if (!a.Narrow() || !b.Narrow()) return sum;
-  const double cb = std::clamp(a.axis.dot(b.axis), -1.0, 1.0), sb = std::sqrt((1 - cb) * (1 + cb));
-  sum.cos_beta = cb;
-  sum.sin_beta = sb;
-  // x holds y when beta + ty <= tx: beta + ty < 270 degrees and tx < 90, so cosines decide.
-  const auto holds = [cb, sb](const Cone& x, const Cone& y) {
-    return cb * y.cos_half - sb * y.sin_half >= x.cos_half;
-  };
-  sum.holder = holds(a, b) ? &a : holds(b, a) ? &b : nullptr;
-  if (sum.holder != nullptr) return sum;
-  const double c1 = cb * a.cos_half - sb * a.sin_half, s1 = sb * a.cos_half + cb * a.sin_half;  // beta + ta
-  sum.cos_s = c1 * b.cos_half - s1 * b.sin_half;
-  sum.sin_s = s1 * b.cos_half + c1 * b.sin_half;
-  return sum;
 }
 
 // A region whose cone is under 90 degrees cannot meet itself; otherwise its halves are
@@ -313,7 +267,7 @@ template <typename Real>
 void SelfCollision<Real>::CrossPairs(int a, int b, std::vector<std::array<int, 2>>* pairs) const {
   const PatchRegion &first = patches_.regions[a], &second = patches_.regions[b];
   if (!region_box_[a].Overlaps(region_box_[b])) return;
-  if (first.Touches(second) && NarrowTogether(region_cone_[a], region_cone_[b])) return;
+  if (first.Touches(second) && NormalCone::NarrowTogether(region_cone_[a], region_cone_[b])) return;
   if (first.leaf() && second.leaf()) {
     if (!first.Touches(second) && Separated(first.patch, second.patch)) return;
     pairs->push_back({std::min(first.patch, second.patch), std::max(first.patch, second.patch)});

@@ -55,6 +55,7 @@
 #include "server/sim/cloth_patches.hpp"
 #include "server/sim/cloth_state.hpp"
 #include "server/sim/collision_geometry.hpp"
+#include "server/sim/normal_cone.hpp"
 #include "server/sim/obstacles.hpp"
 #include "server/sim/sim_params.hpp"
 
@@ -123,27 +124,12 @@ class SelfCollision {
   using Positions = Eigen::Array<double, Eigen::Dynamic, 3>;
 
   void Load(const ClothModel<Real>& model, const ClothState<Real>& start, const ClothState<Real>& end);
-  /// The directions a surface's normals take: within a half-angle theta of the unit axis, kept
-  /// as its cosine and sine. Narrow: theta under 90 degrees, so the surface cannot meet itself.
-  struct Cone {
-    Point axis;
-    double cos_half = -1, sin_half = 0;  ///< the default: 180 degrees, any direction
-    bool Narrow() const { return cos_half > 0; }
-  };
   void SweptBoxes();
   void TriangleNormals();
   static void CellNormals(const Positions& x, int top, int bottom, int cells, int first, Positions* normals);
   void BoxPatch(int patch);
-  Cone PatchCone(const ClothPatch& patch) const;
+  NormalCone PatchCone(const ClothPatch& patch) const;
   void RegionBounds();
-  /// Two narrow cones' sum of angles, in cosines and sines (self_collision.cpp).
-  struct ConeSum {
-    const Cone* holder = nullptr;  ///< the cone that holds the other, if one does
-    double cos_beta = 1, sin_beta = 0, cos_s = -1, sin_s = 0;
-  };
-  static ConeSum Sum(const Cone& a, const Cone& b);
-  static Cone Union(const Cone& a, const Cone& b);
-  static bool NarrowTogether(const Cone& a, const Cone& b);
   void SelfPairs(int region, std::vector<std::array<int, 2>>* pairs) const;
   void CrossPairs(int a, int b, std::vector<std::array<int, 2>>* pairs) const;
   bool Separated(int p, int q) const;
@@ -205,7 +191,7 @@ class SelfCollision {
   std::vector<int> named_;                    ///< the patches pairs name, each once
   std::vector<int> leaf_region_;              ///< each patch's region
   std::vector<Box> region_box_;               ///< per region, its nodes' swept boxes together
-  std::vector<Cone> region_cone_;             ///< per region
+  std::vector<NormalCone> region_cone_;       ///< per region
   Eigen::VectorXd moved_by_;                  ///< m, per node, |x1 - x0|
   // Per triangle, in ClothMesh order: its normal (unnormalised, m^2) at the step's start and
   // end, the longer of the two, and curl >= |du x dv|, which bounds how far the normal strays
