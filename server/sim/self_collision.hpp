@@ -4,17 +4,8 @@
 // friction for cloth animation", in the form of a correction after the step).
 //
 // With v = (x1 - x0) / dt each node's average velocity over the step:
-//   cull       the mesh is cut into patches of 2 x 2 cells under a tree of rectangles
-//              (cloth_patches.hpp). A region whose triangles' normals stay within a cone of
-//              half-angle below 90 degrees over the whole step cannot meet itself (Volino and
-//              Magnenat-Thalmann 1994, the normal-cone criterion; its test that the region's
-//              outline does not cross itself in projection is left out, as a grid of springs
-//              cannot shear that far), nor can two touching regions whose cones together stay
-//              below it. Regions are examined pair by pair down the tree only where their
-//              boxes, swept over the step and grown by h/2, overlap; two patches apart also
-//              need no plane across the line between their centres to part them.
-//              Why cones and not a spatial hash: a hash pays for every node and cell at every
-//              step; the cones cost a normal per triangle and let a smooth flag skip the rest.
+//   cull       the pairs of primitives that may come within h over the step: the broad phase
+//              (collision_culling.hpp), normal cones over a tree of patches and swept boxes.
 //   proximity  point-triangle and edge-edge pairs closer than h at x0 and approaching get an
 //              impulse that stops the approach and parts them by a tenth of the overlap per
 //              step: a folded flag lies on itself h apart.
@@ -38,11 +29,11 @@
 // parting beyond the small separating speed, and a step where nothing comes close is left
 // unchanged bit for bit.
 //
-// Threads (params.threads) share what reads and writes nothing another part needs: the normals
-// row by row, the leaves' boxes and cones, each patch pair's candidates (kept in the pairs'
-// order), and the detection of close pairs and of contacts in blocks of candidates. The
-// impulses go one by one in the candidates' order, and a contact found before an impulse moved
-// one of its nodes is found again: the same state gives the same result at any thread count.
+// Threads (params.threads) share what reads and writes nothing another part needs: the broad
+// phase (collision_culling.hpp), and the detection of close pairs and of contacts in blocks of
+// candidates. The impulses go one by one in the candidates' order, and a contact found before
+// an impulse moved one of its nodes is found again: the same state gives the same result at
+// any thread count.
 #pragma once
 
 #include <algorithm>
@@ -50,12 +41,10 @@
 #include <optional>
 #include <vector>
 
-#include "server/sim/cloth_mesh.hpp"
 #include "server/sim/cloth_model.hpp"
-#include "server/sim/cloth_patches.hpp"
 #include "server/sim/cloth_state.hpp"
+#include "server/sim/collision_culling.hpp"
 #include "server/sim/collision_geometry.hpp"
-#include "server/sim/normal_cone.hpp"
 #include "server/sim/obstacles.hpp"
 #include "server/sim/sim_params.hpp"
 
@@ -86,7 +75,6 @@ struct SelfCollisionStats {
 template <typename Real>
 class SelfCollision {
  public:
-  static constexpr int kPatchCells = 2;             ///< cells along a patch's side
   static constexpr int kImpulseRounds = 6;          ///< rounds of impulses before the fail-safe
   static constexpr double kContactTolerance = 0.1;  ///< of h: how near counts as a contact
   static constexpr double kSpacingShare = 0.25;     ///< h is at most this share of the grid spacing
@@ -101,40 +89,10 @@ class SelfCollision {
   const SelfCollisionStats& stats() const { return stats_; }
 
  private:
-  struct Pair {
-    bool edges = false;  ///< edge-edge; else point-triangle
-    int a = 0, b = 0;    ///< node and triangle, or two edges
-  };
-  /// An axis-aligned box in float, rounded outwards from the double extent it bounds, at half
-  /// the memory: it holds that extent, so a test in float finds every pair the double one would,
-  /// and the few it adds are farther apart than h, which the exact tests then reject (a result
-  /// does not change).
-  struct Box {
-    Eigen::Vector3f lo, hi;
-    static Box Around(const Point& lo, const Point& hi);
-    static Box Empty() { return {Eigen::Vector3f::Constant(INFINITY), Eigen::Vector3f::Constant(-INFINITY)}; }
-    Box Joined(const Box& other) const { return {lo.cwiseMin(other.lo), hi.cwiseMax(other.hi)}; }
-    bool Overlaps(const Box& other) const {
-      return (lo.array() <= other.hi.array()).all() && (other.lo.array() <= hi.array()).all();
-    }
-  };
-
-  /// Positions, one row per node (or normals, one per triangle): x, y, z in columns, so that
-  /// each coordinate is contiguous.
-  using Positions = Eigen::Array<double, Eigen::Dynamic, 3>;
-
   void Load(const ClothModel<Real>& model, const ClothState<Real>& start, const ClothState<Real>& end);
-  void SweptBoxes();
-  void TriangleNormals();
-  static void CellNormals(const Positions& x, int top, int bottom, int cells, int first, Positions* normals);
-  void BoxPatch(int patch);
-  NormalCone PatchCone(const ClothPatch& patch) const;
-  void RegionBounds();
-  void SelfPairs(int region, std::vector<std::array<int, 2>>* pairs) const;
-  void CrossPairs(int a, int b, std::vector<std::array<int, 2>>* pairs) const;
-  bool Separated(int p, int q) const;
-  void Candidates(const std::vector<std::array<int, 2>>& patch_pairs);
-  void AddPairs(int p, int q, std::vector<int>* near, std::vector<Pair>* found) const;
+  std::array<int, 4> Nodes(const PrimitivePair& pair) const { return culling_.Nodes(pair); }
+  /// This round's candidates, from the culling.
+  const std::vector<PrimitivePair>& candidates() const { return culling_.candidates(); }
   /// Candidates a thread takes at a time in the detection passes.
   static constexpr int kBlock = 256;
   template <typename Found, typename Body>
@@ -153,17 +111,16 @@ class SelfCollision {
     int candidate = 0;
     double when = 0;
   };
-  std::optional<double> ContactTime(const Pair& pair, const std::array<int, 4>& nodes) const;
+  std::optional<double> ContactTime(const PrimitivePair& pair, const std::array<int, 4>& nodes) const;
   int Contacts(bool hold);
   bool HoldThoseInObstacles();
-  std::array<int, 4> Nodes(const Pair& pair) const;
   bool Immobile(const std::array<int, 4>& nodes) const;
   bool Push(const std::array<int, 4>& nodes, const std::array<double, 4>& weights, const Point& normal,
             double speed);
   void Hold(int node);
   Point Start(int node) const { return Row(start_, node); }
   Point End(int node) const { return Row(end_, node); }
-  static Point Row(const Positions& rows, int i) { return rows.row(i).transpose().matrix(); }
+  static Point Row(const NodeRows& rows, int i) { return rows.row(i).transpose().matrix(); }
   Point Integrated(int node) const { return Row(integrated_, node); }
   bool Moved(int node) const { return (end_.row(node) != integrated_.row(node)).any(); }
   Point Velocity(int node) const { return (End(node) - Start(node)) / dt_; }
@@ -173,35 +130,15 @@ class SelfCollision {
             {End(n[0]), End(n[1]), End(n[2]), End(n[3])}};
   }
 
-  int cols_ = 0;
-  ClothMesh mesh_;
-  ClothPatches patches_;
+  CollisionCulling culling_;
   Obstacles obstacles_;
   double thickness_ = 0, dt_ = 0;
   int threads_ = 1;  ///< params.threads: the same result at any count
 
   // Per step, per node: positions at the start and end (as corrected), the end as integrated,
-  // the end velocity (as corrected, and as integrated), inverse mass (0 when pinned or held),
-  // swept box grown by h/2.
-  Positions start_, end_, integrated_, velocity_, integrated_velocity_;
+  // the end velocity (as corrected, and as integrated), inverse mass (0 when pinned or held).
+  NodeRows start_, end_, integrated_, velocity_, integrated_velocity_;
   std::vector<double> inverse_mass_;
-  std::vector<Box> node_box_;
-  std::vector<Box> triangle_box_, edge_box_;  ///< of the patches a pair named (BoxPatch)
-  std::vector<char> boxed_;                   ///< per patch: whether a pair names it
-  std::vector<int> named_;                    ///< the patches pairs name, each once
-  std::vector<int> leaf_region_;              ///< each patch's region
-  std::vector<Box> region_box_;               ///< per region, its nodes' swept boxes together
-  std::vector<NormalCone> region_cone_;       ///< per region
-  Eigen::VectorXd moved_by_;                  ///< m, per node, |x1 - x0|
-  // Per triangle, in ClothMesh order: its normal (unnormalised, m^2) at the step's start and
-  // end, the longer of the two, and curl >= |du x dv|, which bounds how far the normal strays
-  // between them (self_collision.cpp).
-  Positions normal_start_, normal_end_;
-  Eigen::ArrayXd normal_longest_, normal_curl_;
-  std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
-  std::vector<Pair> candidates_;
-  std::vector<std::vector<Pair>> pair_candidates_;  ///< per patch pair, its candidates
-  std::vector<std::vector<int>> near_;  ///< per participant, scratch: one patch's primitives in another's box
   std::vector<std::vector<Proximate>> proximate_blocks_;
   std::vector<Proximate> proximate_;
   std::vector<std::vector<Hit>> hit_blocks_;

@@ -1,0 +1,120 @@
+// The broad phase of self-collision (self_collision.hpp): which primitive pairs of the cloth,
+// a node and a triangle or two edges, may come within h of each other over a step.
+//
+//   (x0, x1, h) => swept boxes   each node's box over its straight path, grown by h/2
+//               => normals       each triangle's at x0 and x1, and how far it can stray between
+//               => regions       boxes and normal cones of the patch tree (cloth_patches.hpp),
+//                                leaves from their nodes and triangles, the rest from halves
+//               => patch pairs   down the tree: a region whose cone is narrow cannot meet itself,
+//                                two touching regions whose cones together stay narrow cannot
+//                                meet each other, boxes apart cannot meet; two patches apart
+//                                also need no plane across the line between their centres to
+//                                part them
+//               => candidates    in each patch pair, the primitives whose boxes overlap
+//
+// Why cones and not a spatial hash: a hash pays for every node and cell at every step; the cones
+// cost a normal per triangle and let a smooth flag skip the rest. Threads share the normals
+// (row by row), the leaves' bounds and each patch pair's candidates; the lists are joined in
+// the pairs' order, so the candidates and their order are the same at any thread count.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "server/sim/cloth_mesh.hpp"
+#include "server/sim/cloth_patches.hpp"
+#include "server/sim/collision_geometry.hpp"
+#include "server/sim/normal_cone.hpp"
+
+namespace flagsim::sim {
+
+/// Positions, one row per node (or normals, one per triangle): x, y, z in columns, so that each
+/// coordinate is contiguous.
+using NodeRows = Eigen::Array<double, Eigen::Dynamic, 3>;
+
+/// A pair of primitives that may meet: a node and a triangle, or two edges (ClothMesh indices).
+struct PrimitivePair {
+  bool edges = false;  ///< edge-edge; else point-triangle
+  int a = 0, b = 0;    ///< node and triangle, or two edges
+};
+
+class CollisionCulling {
+ public:
+  static constexpr int kPatchCells = 2;  ///< cells along a patch's side
+
+  CollisionCulling(int cols, int rows);
+
+  /// The pairs that may come within `h` over the step from `start` to `end`, but none whose
+  /// four nodes all have inverse mass 0 (pinned or held), in an order that depends on the
+  /// positions alone. They stay in candidates() until the next Find.
+  const std::vector<PrimitivePair>& Find(const NodeRows& start, const NodeRows& end,
+                                         const std::vector<double>& inverse_mass, double h, int threads);
+
+  const std::vector<PrimitivePair>& candidates() const { return candidates_; }
+  /// The nodes of a pair: (node, triangle's a, b, c), or (edge's two, other edge's two).
+  std::array<int, 4> Nodes(const PrimitivePair& pair) const;
+  /// Patch pairs the last Find examined (a patch with itself counts once).
+  int patch_pairs() const { return int(patch_pairs_.size()); }
+
+ private:
+  /// An axis-aligned box in float, rounded outwards from the double extent it bounds, at half
+  /// the memory: it holds that extent, so a test in float finds every pair the double one
+  /// would, and the few it adds are farther apart than h, which the exact tests reject.
+  struct Box {
+    Eigen::Vector3f lo, hi;
+    static Box Around(const Point& lo, const Point& hi);
+    static Box Empty() { return {Eigen::Vector3f::Constant(INFINITY), Eigen::Vector3f::Constant(-INFINITY)}; }
+    Box Joined(const Box& other) const { return {lo.cwiseMin(other.lo), hi.cwiseMax(other.hi)}; }
+    bool Overlaps(const Box& other) const {
+      return (lo.array() <= other.hi.array()).all() && (other.lo.array() <= hi.array()).all();
+    }
+  };
+
+  void SweptBoxes();
+  void TriangleNormals();
+  static void CellNormals(const NodeRows& x, int top, int bottom, int cells, int first, NodeRows* normals);
+  void BoxPatch(int patch);
+  NormalCone PatchCone(const ClothPatch& patch) const;
+  void RegionBounds();
+  void SelfPairs(int region);
+  void CrossPairs(int a, int b);
+  bool Separated(int p, int q) const;
+  void Candidates();
+  void AddPairs(int p, int q, std::vector<int>* near, std::vector<PrimitivePair>* found) const;
+  bool Immobile(const PrimitivePair& pair) const;
+  Point Start(int node) const { return (*start_).row(node).transpose().matrix(); }
+  Point End(int node) const { return (*end_).row(node).transpose().matrix(); }
+  static Point Row(const NodeRows& rows, int i) { return rows.row(i).transpose().matrix(); }
+
+  int cols_ = 0;
+  ClothMesh mesh_;
+  ClothPatches patches_;
+  std::vector<int> leaf_region_;  ///< each patch's region
+
+  // The step being culled (valid during Find).
+  const NodeRows* start_ = nullptr;
+  const NodeRows* end_ = nullptr;
+  const std::vector<double>* inverse_mass_ = nullptr;
+  double h_ = 0;
+  int threads_ = 1;
+
+  std::vector<Box> node_box_;                 ///< per node, its swept box grown by h/2
+  std::vector<Box> triangle_box_, edge_box_;  ///< of the patches a pair named (BoxPatch)
+  std::vector<char> boxed_;                   ///< per patch: whether a pair names it
+  std::vector<int> named_;                    ///< the patches pairs name, each once
+  std::vector<Box> region_box_;               ///< per region, its nodes' swept boxes together
+  std::vector<NormalCone> region_cone_;       ///< per region
+  Eigen::VectorXd moved_by_;                  ///< m, per node, |x1 - x0|
+  // Per triangle, in ClothMesh order: its normal (unnormalised, m^2) at the step's start and
+  // end, the longer of the two, and curl >= |du x dv|, which bounds how far the normal strays
+  // between them (collision_culling.cpp).
+  NodeRows normal_start_, normal_end_;
+  Eigen::ArrayXd normal_longest_, normal_curl_;
+  std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
+  std::vector<std::vector<PrimitivePair>> pair_candidates_;  ///< per patch pair, its candidates
+  std::vector<std::vector<int>> near_;  ///< per participant, scratch: one patch's primitives in another's box
+  std::vector<PrimitivePair> candidates_;
+};
+
+}  // namespace flagsim::sim
