@@ -1,7 +1,7 @@
 /* Reads an LCM event log with lcm-gen's C types and liblcm's log reader, and prints a line for
- * each STATE, PARAMS, STATUS, TIMELINE, FRAME, TILE and CHECKPOINT message: the reference the Lua reader
- * (read_log.lua) must print the same lines as. 64-bit hashes and ids are printed as 16 hex
- * digits, as flagctl and the gateway print them.
+ * each STATE, PARAMS, STATUS, TIMELINE, FRAME, TILE and CHECKPOINT message: the reference whose
+ * lines the Lua reader (read_log.lua) must print the same. 64-bit hashes and ids are printed as
+ * 16 hex digits, as flagctl and the gateway print them.
  * Usage: read_log LOG PREFIX; exit 1 if a message of those channels does not decode. */
 #include <inttypes.h>
 #include <lcm/eventlog.h>

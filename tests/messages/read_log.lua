@@ -1,7 +1,6 @@
 -- Reads an LCM event log with lcm-gen's Lua types and Debian's liblcm-lua (Lua 5.2), and prints
 -- a line for each STATE, PARAMS, STATUS, TIMELINE, FRAME, TILE and CHECKPOINT message, the same
--- lines as
--- read_log.c prints with the C types.
+-- lines as read_log.c prints with the C types.
 --
 -- liblcm-lua has no log reader, so the events are read here. An event is: the sync word
 -- 0xEDA1DA01, int64 event number, int64 timestamp (us), int32 channel length, int32 data length,
