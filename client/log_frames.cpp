@@ -19,7 +19,7 @@ std::optional<Message> Decode(const std::vector<uint8_t>& data) {
 
 /// The frame_rate row of a PARAMS message, or nullopt.
 std::optional<double> FrameRateOf(const params_t& params) {
-  for (const parameter_t& row : params.params) {
+  for (const parameter_t& row : params.parameters) {
     if (row.name == "frame_rate" && std::isfinite(row.value)) return row.value;
   }
   return std::nullopt;

@@ -40,7 +40,7 @@ std::string DefaultText(const parameter_t& row) {
 
 void PrintParams(const params_t& params, std::ostream& out) {
   size_t name_width = 4, value_width = 5, unit_width = 4, range_width = 5;
-  for (const parameter_t& row : params.params) {
+  for (const parameter_t& row : params.parameters) {
     name_width = std::max(name_width, row.name.size());
     value_width = std::max(value_width, row.value_text.size());
     unit_width = std::max(unit_width, row.unit.size());
@@ -56,7 +56,7 @@ void PrintParams(const params_t& params, std::ostream& out) {
     out << line;
   };
   print("name", "value", "unit", "range", "default", "description");
-  for (const parameter_t& row : params.params) {
+  for (const parameter_t& row : params.parameters) {
     print(row.name, row.value_text, row.unit, Range(row), DefaultText(row), row.description);
   }
 }
@@ -137,7 +137,7 @@ std::vector<std::string> KeyColumns(const timeline_key_t& key) {
 
 void PrintTimeline(const timeline_t& timeline, std::ostream& out) {
   out << (timeline.playing ? "playing" : "paused") << " at " << Number(timeline.position) << " s of "
-      << Number(timeline.end) << " s, speed " << Number(timeline.speed) << ", loop "
+      << Number(timeline.last_key_time) << " s, speed " << Number(timeline.speed) << ", loop "
       << (timeline.loop ? "on" : "off") << (timeline.gliding ? ", gliding" : "") << ", " << timeline.num_keys
       << " key(s)\n";
   if (timeline.keys.empty()) return;

@@ -12,6 +12,7 @@ packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
   libeigen3-dev                                  # linear algebra (given)
   liblcm-dev liblcm-bin liblcm-java              # LCM 1.3.1: library, lcm-gen/logger/logplayer, lcm.jar
+  liblcm-lua lua5.2                              # LCM's Lua module and its Lua: the bindings test decodes a log in Lua
   libcli11-dev                                   # command lines of flagd and flagctl
   libtomlplusplus-dev                            # scene files (TOML)
   libspdlog-dev                                  # server logging

@@ -134,7 +134,7 @@ json ParameterValue(const parameter_t& parameter) { return ValueOfKind(parameter
 
 json ParamsJson(const params_t& params) {
   json rows = json::array();
-  for (const parameter_t& p : params.params) {
+  for (const parameter_t& p : params.parameters) {
     rows.push_back({{"name", p.name},
                     {"unit", p.unit},
                     {"kind", KindName(p.kind)},
@@ -151,7 +151,7 @@ json ParamsJson(const params_t& params) {
 
 json ParameterValues(const params_t& params) {
   json values = json::array();
-  for (const parameter_t& p : params.params)
+  for (const parameter_t& p : params.parameters)
     values.push_back({{"name", p.name}, {"value", ParameterValue(p)}});
   return values;
 }
@@ -164,7 +164,7 @@ json TimelineJson(const timeline_t& t) {
           {"position", t.position},
           {"speed", t.speed},
           {"loop", bool(t.loop)},
-          {"end", t.end},
+          {"last_key_time", t.last_key_time},
           {"gliding", bool(t.gliding)},
           {"keys", keys}};
 }

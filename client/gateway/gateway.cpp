@@ -32,10 +32,10 @@ json CommandResultJson(const CommandOutcome& outcome, const std::string& channel
 json ChangedValues(const std::optional<params_t>& before, const params_t& after) {
   std::map<std::string, json> old;
   if (before) {
-    for (const parameter_t& p : before->params) old[p.name] = ParameterValue(p);
+    for (const parameter_t& p : before->parameters) old[p.name] = ParameterValue(p);
   }
   json changed = json::array();
-  for (const parameter_t& p : after.params) {
+  for (const parameter_t& p : after.parameters) {
     const json value = ParameterValue(p);
     const auto found = old.find(p.name);
     if (found == old.end() || found->second != value) changed.push_back({{"name", p.name}, {"value", value}});

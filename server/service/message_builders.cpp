@@ -74,9 +74,9 @@ params_t MakeParamsMessage(const Scene& scene, int64_t utime) {
     row.choices = parameter.choices;
     row.num_choices = static_cast<int32_t>(row.choices.size());
     row.description = parameter.description;
-    message.params.push_back(std::move(row));
+    message.parameters.push_back(std::move(row));
   }
-  message.num_params = static_cast<int32_t>(message.params.size());
+  message.num_parameters = static_cast<int32_t>(message.parameters.size());
   return message;
 }
 
@@ -100,7 +100,7 @@ timeline_t MakeTimelineMessage(const sim::Timeline& timeline, int64_t step, int6
   message.position = timeline.position();
   message.speed = timeline.speed();
   message.loop = timeline.loop();
-  message.end = timeline.End();
+  message.last_key_time = timeline.End();
   message.gliding = timeline.gliding();
   for (const sim::Keyframe& key : timeline.keys()) message.keys.push_back(MakeKeyMessage(key));
   message.num_keys = static_cast<int32_t>(message.keys.size());

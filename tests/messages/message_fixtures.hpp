@@ -70,8 +70,8 @@ inline params_t SomeParams() {
   row.choices = {"a", "b"};
   row.num_choices = 2;
   row.value_text = "a";
-  params.params = {row, row};
-  params.num_params = 2;
+  params.parameters = {row, row};
+  params.num_parameters = 2;
   return params;
 }
 
@@ -112,7 +112,7 @@ inline timeline_t SomeTimeline() {
   timeline.keys[1].names.clear();
   timeline.keys[1].values.clear();
   timeline.num_keys = 2;
-  timeline.end = 4;
+  timeline.last_key_time = 4;
   return timeline;
 }
 

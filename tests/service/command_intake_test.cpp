@@ -309,7 +309,7 @@ TEST_F(CommandIntakeTest, KeyframesAreAddedPlayedAndListedOnTimeline) {
   EXPECT_EQ(listed->keys[1].names, testing::SomeKey().names);
   EXPECT_EQ(listed->keys[1].law, timeline_key_t::LAW_SMOOTH);
   EXPECT_FALSE(listed->playing);
-  EXPECT_EQ(listed->end, 2);
+  EXPECT_EQ(listed->last_key_time, 2);
 
   ASSERT_EQ(client_.Send(channels_.keyframe, KeyframeCommand(keyframe_command_t::PLAY)).result,
             CommandOutcome::kAccepted);

@@ -109,9 +109,9 @@ TEST(MessageBuilders, ParamsListTheWholeTableWithCurrentValues) {
   Scene scene;
   scene.sim.forces.stiffness = 777;
   const params_t params = MakeParamsMessage(scene, 1);
-  ASSERT_EQ(params.num_params, static_cast<int32_t>(ParameterTable::Get().parameters().size()));
+  ASSERT_EQ(params.num_parameters, static_cast<int32_t>(ParameterTable::Get().parameters().size()));
   bool found = false;
-  for (const parameter_t& row : params.params) {
+  for (const parameter_t& row : params.parameters) {
     if (row.name != "stiffness") continue;
     found = true;
     EXPECT_EQ(row.value, 777);
@@ -166,7 +166,7 @@ TEST(MessageBuilders, TimelineListsEveryKeyAndWhatItSets) {
   EXPECT_TRUE(message.playing);
   EXPECT_TRUE(message.loop);
   EXPECT_EQ(message.position, 1.25);
-  EXPECT_EQ(message.end, 3.5);
+  EXPECT_EQ(message.last_key_time, 3.5);
   ASSERT_EQ(message.num_keys, 2);
   const timeline_key_t& first = message.keys[0];
   EXPECT_EQ(first.law, timeline_key_t::LAW_CUBIC);

@@ -13,7 +13,7 @@ export const kAnimatableNames = ["stiffness", "shear_stiffness", "bend_stiffness
 
 /// flagsim.Params JSON -> [parameter], in the table's order.
 export function readParamsTable(message) {
-  const rows = Array.isArray(message) ? message : message?.parameters ?? message?.params ?? [];
+  const rows = Array.isArray(message) ? message : message?.parameters ?? [];
   return rows.map(readParameter).filter((parameter) => parameter.name);
 }
 

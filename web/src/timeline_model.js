@@ -1,6 +1,6 @@
 // `/flag/timeline` (flagsim.Timeline) read into one shape, and where its position is now.
 //
-//   { playing, position (s), speed, loop, end (s), gliding, keys: [{ time, law, wind?,
+//   { playing, position (s), speed, loop, lastKeyTime (s), gliding, keys: [{ time, law, wind?,
 //     parameters?, camera? }] }  + the simulated time it arrived at
 //   --positionAt(simTime)--> s of timeline time, moving between the 1 Hz messages
 //
@@ -17,7 +17,7 @@ export function readTimeline(message, simTime) {
     position: Number(message?.position ?? 0),
     speed: Number(message?.speed ?? 1),
     loop: Boolean(message?.loop),
-    end: Number(message?.end ?? (keys.length ? keys[keys.length - 1].time : 0)),
+    lastKeyTime: Number(message?.last_key_time ?? (keys.length ? keys[keys.length - 1].time : 0)),
     gliding: Boolean(message?.gliding),
     keys,
     simTimeAtMessage: simTime,  ///< s, the flag's time when the message came (null: unknown)
@@ -43,7 +43,7 @@ function zipParameters(names, values) {
 }
 
 /// The timeline's position now: the message's, moved on by speed times the simulated time
-/// since (or the wall time, without states), wrapped or stopped at the end.
+/// since (or the wall time, without states), wrapped or stopped at the last key.
 export function positionAt(timeline, simTime) {
   if (!timeline) return 0;
   if (!timeline.playing) return timeline.position;
@@ -51,8 +51,8 @@ export function positionAt(timeline, simTime) {
     ? simTime - timeline.simTimeAtMessage
     : (performance.now() - timeline.receivedAt) / 1000;
   let position = timeline.position + Math.max(0, elapsed) * timeline.speed;
-  if (timeline.end > 0 && position > timeline.end) {
-    position = timeline.loop ? position % timeline.end : timeline.end;
+  if (timeline.lastKeyTime > 0 && position > timeline.lastKeyTime) {
+    position = timeline.loop ? position % timeline.lastKeyTime : timeline.lastKeyTime;
   }
   return position;
 }

@@ -131,7 +131,7 @@ export class TimelinePanel {
     this.loop.checked = timeline.loop;
     if (document.activeElement !== this.speed) this.speed.value = formatNumber(timeline.speed, 3);
     // Markers and ticks are rebuilt only when they change: a click on a marker must find it there.
-    const span = niceSpan(Math.max(timeline.end, timeline.position, 4) * 1.05);
+    const span = niceSpan(Math.max(timeline.lastKeyTime, timeline.position, 4) * 1.05);
     const keysShown = JSON.stringify([span, timeline.keys]);
     if (keysShown !== this.keysShown) {
       this.keysShown = keysShown;
@@ -189,8 +189,9 @@ export class TimelinePanel {
   showPosition() {
     if (!this.timeline) return;
     const position = positionAt(this.timeline, this.simTime);
-    const end = this.timeline.end > 0 ? ` / ${this.timeline.end.toFixed(2)}` : "";
-    setText(this.positionText, `t = ${position.toFixed(2)}${end} s${this.timeline.gliding ? " · gliding" : ""}`);
+    const last = this.timeline.lastKeyTime;
+    const ofLast = last > 0 ? ` / ${last.toFixed(2)}` : "";
+    setText(this.positionText, `t = ${position.toFixed(2)}${ofLast} s${this.timeline.gliding ? " · gliding" : ""}`);
     setText(this.addButton, `Add key at ${position.toFixed(2)} s`);
     this.playhead.style.left = `${Math.min(100, (position / this.span) * 100).toFixed(2)}%`;
   }

@@ -14,7 +14,7 @@ test("the gateway's table: kinds by name, choices by name", () => {
 });
 
 test("the LCM message's field names and numeric kinds read the same", () => {
-  const [integrator] = readParamsTable({ params: [{ name: "integrator", kind: 3, min_value: 0, max_value: 1, default_value: 0, value: 1, choices: ["a", "b"] }] });
+  const [integrator] = readParamsTable({ parameters: [{ name: "integrator", kind: 3, min_value: 0, max_value: 1, default_value: 0, value: 1, choices: ["a", "b"] }] });
   assert.deepEqual([integrator.kind, integrator.value, integrator.defaultValue, integrator.max], ["choice", "b", "a", 1]);
 });
 
