@@ -5,6 +5,7 @@
 //             timing kept (lost and missing frames repeat the last whole one)
 //   output    PNG files, or ffmpeg fed down a pipe (frame_output.hpp)
 //   report    what was skipped, repeated or dropped, and where a damaged log stopped
+#include <atomic>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -17,6 +18,12 @@
 
 namespace flagsim {
 namespace {
+
+struct ExportRequest {
+  std::string log_path;   ///< an LCM event log
+  std::string output;     ///< DIR/ (PNG frames), NAME.mp4 or NAME.gif
+  double frame_rate = 0;  ///< Hz of the video; 0: the log's own
+};
 
 constexpr double kFallbackFrameRate = 30;  ///< Hz, for a log that tells none (a single frame)
 
@@ -60,9 +67,8 @@ std::string Summary(const ExportRequest& request, const FrameOutput& output, con
   return line;
 }
 
-}  // namespace
-
-int Export(const Globals& globals, const ExportRequest& request) {
+/// The frames in a log, assembled and hash-checked, into PNGs or a video; `stop` ends it early.
+int Export(const Globals& globals, const ExportRequest& request, const std::atomic<bool>& stop) {
   std::string problem;
   const std::optional<OutputKind> kind = OutputKindOf(request.output, &problem);
   if (!kind) {
@@ -91,7 +97,7 @@ int Export(const Globals& globals, const ExportRequest& request) {
   // Frames into the output until the log ends, the output fails or the user interrupts.
   ProgressBar bar;
   bool sizes_vary = false;
-  while (problem.empty() && !g_stop.load() && frames->Next()) {
+  while (problem.empty() && !stop.load() && frames->Next()) {
     sizes_vary |= frames->width() != survey.width || frames->height() != survey.height;
     problem = output->Write(frames->image().data(), frames->width(), frames->height());
     const EventLogReader& reader = frames->reader();
@@ -112,11 +118,47 @@ int Export(const Globals& globals, const ExportRequest& request) {
     std::fprintf(stderr, "flagctl export: %s\n", problem.c_str());
     return kFailed;
   }
-  if (g_stop.load()) {
+  if (stop.load()) {
     std::fprintf(stderr, "flagctl export: interrupted; %s holds the frames so far\n", request.output.c_str());
     return kFailed;
   }
   return frames->images() > 0 ? kOk : NothingToExport(request, channels, survey);
+}
+
+}  // namespace
+
+void AddExportCommand(CLI::App& app, Invocation& invocation) {
+  auto request = std::make_shared<ExportRequest>();
+  ExportRequest& export_request = *request;
+  CLI::App* export_command =
+      app.add_subcommand("export", "turn the frames in an LCM log into PNGs, an MP4 or a GIF");
+  export_command
+      ->add_option("log", export_request.log_path, "the log (flagctl record, flagd render, lcm-logger)")
+      ->required();
+  export_command
+      ->add_option(
+          "-o,--output", export_request.output,
+          "DIR/ or an existing directory: PNG frames frame_%06d.png; NAME.mp4: H.264 video; NAME.gif")
+      ->required();
+  export_command
+      ->add_option(
+          "--fps", export_request.frame_rate,
+          "frames per second of the video (default: the log's frame rate, from its PARAMS or FRAME times)")
+      ->check(CLI::PositiveNumber);
+  export_command->footer(
+      "Reads the TILE and FRAME events with the prefix (--prefix) and assembles them as a client\n"
+      "would; every frame written has the server's frame hash. A log recorded mid-stream starts at its\n"
+      "first keyframe (earlier frames are skipped, with a note). The log's timing is kept: a frame whose\n"
+      "tiles were lost (its hash does not check out), and a frame time the server skipped, repeat the\n"
+      "last whole frame, so there is one image per frame time. A log cut short (a recorder killed\n"
+      "mid-write) is exported up to its last whole event, with a message naming the byte and event where\n"
+      "it stops. Videos are made by ffmpeg (Debian's ffmpeg package) and keep the first frame's size.\n"
+      "Exit codes: 0 ok (also for a log cut short), 1 ffmpeg missing or failed or a file not written,\n"
+      "2 usage, 5 no complete frame in the log.");
+
+  invocation.RunOnParse(export_command, [&invocation, request] {
+    return Export(invocation.globals, *request, invocation.stop);
+  });
 }
 
 }  // namespace flagsim

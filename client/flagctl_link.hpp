@@ -1,0 +1,59 @@
+// What flagctl's subcommands share to talk to a server: the bus and channels of one subcommand
+// (Link), a command's round trip (SendCommand: command => ACK => the outcome printed, an exit
+// code) and a stream's next message printed (AwaitAndPrint).
+#pragma once
+
+#include <algorithm>
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include "client/command_client.hpp"
+#include "client/flagctl_commands.hpp"
+#include "client/stream_reader.hpp"
+#include "messages/bus.hpp"
+#include "messages/channels.hpp"
+
+namespace flagsim {
+
+/// The bus and channels one subcommand talks on.
+struct Link {
+  explicit Link(const Globals& globals);
+
+  /// Says that no `what` came within the timeout; returns kNoAnswer.
+  int NoAnswer(const std::string& what) const;
+
+  Bus bus;
+  Channels channels;
+  const Globals& globals;
+};
+
+/// The outcome printed (accepted at a step, or the server's reason); returns the exit code.
+int Report(const Link& link, const CommandOutcome& outcome);
+
+/// One command on `channel` of Channels, its ACK awaited and reported: its exit code.
+template <class Command>
+int SendCommand(const Globals& globals, std::string Channels::*channel, const Command& command) {
+  Link link(globals);
+  CommandClient client(link.bus, link.channels, globals.timeout);
+  return Report(link, client.Send(link.channels.*channel, command));
+}
+
+/// s to wait for the ACK of a REFRESH before taking a stream as it comes: nobody answers one
+/// when lcm-logplayer plays a log, say.
+constexpr double kRefreshAnswerWait = 1.0;
+
+/// The first Message on `channel` of Channels within the timeout, printed with `print`. Exit
+/// code kOk, or kNoAnswer naming `what`.
+template <class Message, class Print>
+int AwaitAndPrint(const Globals& globals, std::string Channels::*channel, const std::string& what,
+                  Print print) {
+  Link link(globals);
+  const std::optional<Message> received =
+      AwaitMessage<Message>(link.bus, link.channels.*channel, globals.timeout);
+  if (!received) return link.NoAnswer(what);
+  print(*received);
+  return kOk;
+}
+
+}  // namespace flagsim
