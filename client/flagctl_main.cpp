@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "client/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
 
 namespace {
@@ -25,7 +26,7 @@ void AddGlobalOptions(CLI::App& app, flagsim::Globals& globals) {
                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
   app.add_option("--prefix", globals.prefix, "channel prefix of the server")->capture_default_str();
   app.add_option("--timeout", globals.timeout, "seconds to wait for an answer")
-      ->check(CLI::PositiveNumber)
+      ->check(flagsim::AboveZero())
       ->capture_default_str();
 }
 
@@ -50,7 +51,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);  // the subcommand runs in its callback, at the end of the parse
   } catch (const CLI::ParseError& error) {
-    return app.exit(error) == 0 ? kOk : kUsage;
+    const std::string unknown = UnknownSubcommand(app);
+    if (unknown.empty()) return app.exit(error) == 0 ? kOk : kUsage;
+    std::fprintf(stderr, "flagctl: %s\n", unknown.c_str());
+    return kUsage;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());
     return kFailed;
