@@ -66,6 +66,7 @@ std::string Edit(const TimelineEdit& edit, sim::Timeline* timeline) {
       timeline->Clear();
       return "";
     case TimelineEdit::kPlay:
+      if (timeline->keys().empty()) return "operation: play with no keys; add one first (keyframe add)";
       timeline->Play();
       return "";
     case TimelineEdit::kPause:

@@ -232,11 +232,20 @@ TEST(Session, ParametersMustSuitTheTimelineAndResetRestoresIt) {
   EXPECT_EQ(session.scene().sim.integrator, scene.sim.integrator);
 
   ASSERT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kClear)), "");
-  ASSERT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kPlay)), "");
+  ASSERT_NE(session.scene().timeline, scene.timeline);
   ParamChange reset;
   reset.reset_to_scene = true;
   ASSERT_EQ(session.ApplyParams(reset), "");
   EXPECT_EQ(session.scene().timeline, scene.timeline);
+}
+
+// Play needs a key to play: without one it is refused and the timeline stays paused.
+TEST(Session, PlayWithoutKeysIsRefused) {
+  Session session{Scene{}};
+  EXPECT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kPlay)),
+            "operation: play with no keys; add one first (keyframe add)");
+  EXPECT_FALSE(session.scene().timeline.playing());
+  EXPECT_FALSE(session.scene().timeline.gliding());
 }
 
 /// A session whose timeline turns and strengthens the wind, stiffens the cloth and moves the
