@@ -2,6 +2,7 @@
 // status): each a registration that sets the callback running it.
 #include "client/flagctl_commands.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -20,7 +21,8 @@
 namespace flagsim {
 namespace {
 
-/// "NAME=VALUE" assignments => a PARAM command; `reset` first restores the scene. Exit code.
+/// "NAME=VALUE" assignments, each name once => a PARAM command; `reset` first restores the scene
+/// (not the camera). Exit code.
 int SendParams(const Globals& globals, const std::vector<std::string>& assignments, bool reset) {
   param_command_t command{};
   command.reset_to_scene = reset;
@@ -30,8 +32,15 @@ int SendParams(const Globals& globals, const std::vector<std::string>& assignmen
       std::fprintf(stderr, "flagctl: '%s' is not NAME=VALUE\n", assignment.c_str());
       return kUsage;
     }
-    command.names.push_back(assignment.substr(0, equals));
-    command.values.push_back(assignment.substr(equals + 1));
+    const std::string name = assignment.substr(0, equals), value = assignment.substr(equals + 1);
+    const auto same = std::find(command.names.begin(), command.names.end(), name);
+    if (same != command.names.end()) {
+      std::fprintf(stderr, "flagctl: %s is set twice (%s=%s, %s); give each parameter once\n", name.c_str(),
+                   name.c_str(), command.values[same - command.names.begin()].c_str(), assignment.c_str());
+      return kUsage;
+    }
+    command.names.push_back(name);
+    command.values.push_back(value);
   }
   command.num_assignments = static_cast<int32_t>(command.names.size());
   return SendCommand(globals, &Channels::param, command);
@@ -83,7 +92,9 @@ void AddSetCommand(CLI::App& app, Invocation& invocation) {
 }
 
 void AddResetCommand(CLI::App& app, Invocation& invocation) {
-  CLI::App* reset = app.add_subcommand("reset", "restore the scene's parameters and wind, flag at rest");
+  CLI::App* reset = app.add_subcommand(
+      "reset",
+      "restore the scene's parameters, wind and timeline, flag at rest; the camera stays (camera reset)");
   auto assignments = std::make_shared<std::vector<std::string>>();
   reset->add_option("assignments", *assignments, "NAME=VALUE pairs to apply after the reset");
   invocation.RunOnParse(

@@ -248,6 +248,27 @@ TEST(Session, PlayWithoutKeysIsRefused) {
   EXPECT_FALSE(session.scene().timeline.gliding());
 }
 
+// A reset restores the physics (parameters, wind, the flag at rest); the camera stays where the
+// viewer put it.
+TEST(Session, AResetKeepsTheCamera) {
+  Session session{Scene{}};
+  render::CameraMove orbit;
+  orbit.operation = render::CameraMove::kOrbit;
+  orbit.angle = 0.5;
+  ASSERT_EQ(session.ApplyCamera(orbit), "");
+  const render::Camera moved = session.scene().camera;
+  ASSERT_NE(moved.eye, Scene{}.camera.eye);
+  ParamChange change;
+  change.assignments = {{"stiffness", "2500"}};
+  ASSERT_EQ(session.ApplyParams(change), "");
+  ParamChange reset;
+  reset.reset_to_scene = true;
+  ASSERT_EQ(session.ApplyParams(reset), "");
+  EXPECT_EQ(session.scene().sim.forces.stiffness, Scene{}.sim.forces.stiffness);
+  EXPECT_EQ(session.scene().camera.eye, moved.eye);
+  EXPECT_EQ(session.scene().camera.target, moved.target);
+}
+
 /// A session whose timeline turns and strengthens the wind, stiffens the cloth and moves the
 /// camera, on a loop, after `steps` steps at `threads` threads.
 uint64_t HashAfter(int threads, int steps, bool with_timeline) {
