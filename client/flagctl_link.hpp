@@ -1,6 +1,6 @@
 // What flagctl's subcommands share to talk to a server: the bus and channels of one subcommand
 // (Link), a command's round trip (SendCommand: command => ACK => the outcome printed, an exit
-// code) and a stream's next message printed (AwaitAndPrint).
+// code) and a table's latest message asked for and printed (AwaitAndPrint).
 #pragma once
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include "client/command_client.hpp"
 #include "client/flagctl_commands.hpp"
 #include "client/stream_reader.hpp"
+#include "flagsim/refresh_request_t.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
 
@@ -43,15 +44,25 @@ int SendCommand(const Globals& globals, std::string Channels::*channel, const Co
 /// when lcm-logplayer plays a log, say.
 constexpr double kRefreshAnswerWait = 1.0;
 
-/// The first Message on `channel` of Channels within the timeout, printed with `print`. Exit
-/// code kOk, or kNoAnswer naming `what`.
+/// A REFRESH makes the server publish PARAMS, TIMELINE and the last second's STATUS at once: the
+/// first Message on `channel` of Channels within the timeout (that answer, or with nobody to
+/// answer the REFRESH the once-a-second one) is printed with `print`. Exit code kOk, or
+/// kNoAnswer naming `what`.
 template <class Message, class Print>
 int AwaitAndPrint(const Globals& globals, std::string Channels::*channel, const std::string& what,
                   Print print) {
   Link link(globals);
-  const std::optional<Message> received =
-      AwaitMessage<Message>(link.bus, link.channels.*channel, globals.timeout);
-  if (!received) return link.NoAnswer(what);
+  std::optional<Message> received;
+  SubscribeDecoded<Message>(link.bus, link.channels.*channel, [&received](const Message& message) {
+    if (!received) received = message;
+  });
+  const double start = MonotonicSeconds();
+  CommandClient(link.bus, link.channels, std::min(globals.timeout, kRefreshAnswerWait))
+      .Send(link.channels.refresh, refresh_request_t{});
+  const double left = globals.timeout - (MonotonicSeconds() - start);
+  if (!HandleUntil(link.bus, std::max(left, 0.0), [&received] { return received.has_value(); })) {
+    return link.NoAnswer(what);
+  }
   print(*received);
   return kOk;
 }

@@ -124,6 +124,8 @@ void Server::PublishDue(double now) {
   }
   if (intake_.TakeParamsChanged() || std::exchange(integrator_replaced_, false) || refresh) PublishParams();
   if (intake_.TakeTimelineChanged() || refresh) PublishTimeline();
+  // A client asking for the tables (flagctl status) has the last second's report at once.
+  if (refresh && last_status_) bus_.Publish(channels_.status, *last_status_);
   if (now >= next_second_) {
     PublishParams();
     PublishTimeline();
@@ -197,6 +199,7 @@ void Server::PublishStatus(double now) {
   status.server_id = presence_.id();
   status.other_servers = presence_.others();
   bus_.Publish(channels_.status, status);
+  last_status_ = status;
   stats_.ResetWindow();
   window_wall_start_ = now;
   window_sim_start_ = session_.simulation().state().time;

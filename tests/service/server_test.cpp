@@ -179,5 +179,36 @@ TEST_F(ServerTest, ARefreshIsAnsweredByAKeyframeThatNamesIt) {
   EXPECT_GE(manifests_.front().request_id, 0);
 }
 
+// A client asking for the tables (flagctl params, status, keyframe list) sends a REFRESH: PARAMS,
+// TIMELINE and the last second's STATUS come at once, not at the next second.
+TEST_F(ServerTest, ARefreshPublishesTheTablesAtOnce) {
+  scene_.service.frame_rate = 0;
+  Server server(bus_, channels_, scene_, options_);
+  int params = 0, statuses = 0, timelines = 0;
+  const auto count = [this](const std::string& channel, int* counter) {
+    bus_.Subscribe(channel, [counter](const std::string&, const uint8_t*, size_t) { ++*counter; });
+  };
+  count(channels_.params, &params);
+  count(channels_.status, &statuses);
+  count(channels_.timeline, &timelines);
+  for (; now_ < 1.25; now_ += kDt) server.Tick(now_);  // past the first second's publications
+  bus_.HandleAll();
+  ASSERT_GE(statuses, 1);  // a last second's report to publish again
+  params = statuses = timelines = 0;
+  CommandClient client(bus_, channels_, 5.0);
+  const double asked = now_;
+  client.WhileWaiting([&] {
+    now_ += kDt;
+    server.Tick(now_);
+  });
+  ASSERT_EQ(client.Send(channels_.refresh, refresh_request_t{}).result, CommandOutcome::kAccepted);
+  server.Tick(now_);
+  bus_.HandleAll();
+  EXPECT_LT(now_ - asked, 0.5);  // far from the next second
+  EXPECT_EQ(params, 1);
+  EXPECT_EQ(timelines, 1);
+  EXPECT_EQ(statuses, 1);
+}
+
 }  // namespace
 }  // namespace flagsim
