@@ -10,11 +10,15 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
+#include "client/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
 #include "client/frame_output.hpp"
 #include "client/log_frames.hpp"
 #include "client/progress_bar.hpp"
+#include "messages/event_log_reader.hpp"
 
 namespace flagsim {
 namespace {
@@ -57,41 +61,73 @@ int NothingToExport(const ExportRequest& request, const Channels& channels, cons
   return kNothingToExport;
 }
 
-std::string Summary(const ExportRequest& request, const FrameOutput& output, const LogFrames& frames,
-                    bool sizes_vary, double frame_rate, const std::string& rate_source) {
-  char line[512];
+/// What was written: frames, size, rate, and for a video the frames fitted to its size.
+std::string Summary(const ExportRequest& request, const FrameOutput& output, OutputKind kind,
+                    const LogSurvey& survey, const LogFrames& frames, bool sizes_vary, double frame_rate,
+                    const std::string& rate_source) {
+  const bool video = kind != OutputKind::kPngDirectory;
+  char line[640];
   std::snprintf(line, sizeof(line), "%s: %lld frames, %s%d x %d px, %.6g frames per second (%s)",
                 request.output.c_str(), static_cast<long long>(output.frames()),
-                sizes_vary ? "the last " : "", frames.width(), frames.height(), frame_rate,
-                rate_source.c_str());
-  return line;
+                sizes_vary && !video ? "the last " : "", video ? survey.width : frames.width(),
+                video ? survey.height : frames.height(), frame_rate, rate_source.c_str());
+  std::string summary = line;
+  if (output.fitted() > 0) {
+    std::snprintf(line, sizeof(line),
+                  "\nflagctl export: note: %lld frame(s) of another size than the first (%d x %d) scaled "
+                  "to fit it, keeping their shape, on black",
+                  static_cast<long long>(output.fitted()), survey.width, survey.height);
+    summary += line;
+  }
+  return summary;
+}
+
+/// The log's survey and frames; throws std::runtime_error if it cannot be read.
+std::unique_ptr<LogFrames> OpenLog(const ExportRequest& request, const Channels& channels,
+                                   LogSurvey* survey) {
+  *survey = SurveyLog(request.log_path, channels);
+  return std::make_unique<LogFrames>(request.log_path, channels, survey->frame_rate);
+}
+
+/// The frame rate of the output, and where it comes from, for the summary.
+std::pair<double, std::string> FrameRate(const ExportRequest& request, const LogSurvey& survey) {
+  if (request.frame_rate > 0) return {request.frame_rate, "--fps"};
+  if (survey.frame_rate > 0) return {survey.frame_rate, "the log's " + survey.frame_rate_source};
+  return {kFallbackFrameRate, "the log tells none"};
 }
 
 /// The frames in a log, assembled and hash-checked, into PNGs or a video; `stop` ends it early.
+/// What can be checked first is: the log can be read (else 1), the output's name says what to
+/// write (else 2), its directory is there to write in (else 1).
 int Export(const Globals& globals, const ExportRequest& request, const std::atomic<bool>& stop) {
+  try {
+    EventLogReader probe(request.log_path);
+  } catch (const std::runtime_error& error) {
+    std::fprintf(stderr, "flagctl export: %s\n", error.what());
+    return kFailed;
+  }
   std::string problem;
   const std::optional<OutputKind> kind = OutputKindOf(request.output, &problem);
   if (!kind) {
     std::fprintf(stderr, "flagctl export: -o %s\n", problem.c_str());
     return kUsage;
   }
+  problem = CheckOutputPath(*kind, request.output);
+  if (!problem.empty()) {
+    std::fprintf(stderr, "flagctl export: %s\n", problem.c_str());
+    return kFailed;
+  }
   const Channels channels(globals.prefix);
   LogSurvey survey;
   std::unique_ptr<LogFrames> frames;
   try {
-    survey = SurveyLog(request.log_path, channels);
-    frames = std::make_unique<LogFrames>(request.log_path, channels, survey.frame_rate);
+    frames = OpenLog(request, channels, &survey);
   } catch (const std::runtime_error& error) {
     std::fprintf(stderr, "flagctl export: %s\n", error.what());
-    return kUsage;
+    return kFailed;
   }
   if (survey.manifests == 0) return NothingToExport(request, channels, survey);
-  const double rate = request.frame_rate > 0  ? request.frame_rate
-                      : survey.frame_rate > 0 ? survey.frame_rate
-                                              : kFallbackFrameRate;
-  const std::string rate_source = request.frame_rate > 0  ? "--fps"
-                                  : survey.frame_rate > 0 ? "the log's " + survey.frame_rate_source
-                                                          : "the log tells none";
+  const auto [rate, rate_source] = FrameRate(request, survey);
   const std::unique_ptr<FrameOutput> output = MakeFrameOutput(*kind, request.output, rate);
 
   // Frames into the output until the log ends, the output fails or the user interrupts.
@@ -106,17 +142,18 @@ int Export(const Globals& globals, const ExportRequest& request, const std::atom
   }
   const std::string finished = output->Finish();
   if (problem.empty()) problem = finished;
-  bar.Finish(output->frames() > 0 ? Summary(request, *output, *frames, sizes_vary, rate, rate_source)
-                                  : "flagctl export: no frame written");
+  if (!problem.empty()) {  // what went wrong, and no summary of what was not written
+    bar.Finish("flagctl export: " + problem);
+    return kFailed;
+  }
+  bar.Finish(output->frames() > 0
+                 ? Summary(request, *output, *kind, survey, *frames, sizes_vary, rate, rate_source)
+                 : "flagctl export: no frame written");
 
   ReportSkips(frames->report());
   if (!frames->reader().problem().empty()) {
     std::fprintf(stderr, "flagctl export: %s; exported everything before it\n",
                  frames->reader().problem().c_str());
-  }
-  if (!problem.empty()) {
-    std::fprintf(stderr, "flagctl export: %s\n", problem.c_str());
-    return kFailed;
   }
   if (stop.load()) {
     std::fprintf(stderr, "flagctl export: interrupted; %s holds the frames so far\n", request.output.c_str());
@@ -128,7 +165,7 @@ int Export(const Globals& globals, const ExportRequest& request, const std::atom
 }  // namespace
 
 void AddExportCommand(CLI::App& app, Invocation& invocation) {
-  auto request = std::make_shared<ExportRequest>();
+  const auto request = std::make_shared<ExportRequest>();
   ExportRequest& export_request = *request;
   CLI::App* export_command =
       app.add_subcommand("export", "turn the frames in an LCM log into PNGs, an MP4 or a GIF");
@@ -144,7 +181,7 @@ void AddExportCommand(CLI::App& app, Invocation& invocation) {
       ->add_option(
           "--fps", export_request.frame_rate,
           "frames per second of the video (default: the log's frame rate, from its PARAMS or FRAME times)")
-      ->check(CLI::PositiveNumber);
+      ->check(AboveZero());
   export_command->footer(
       "Reads the TILE and FRAME events with the prefix (--prefix) and assembles them as a client\n"
       "would; every frame written has the server's frame hash. A log recorded mid-stream starts at its\n"
@@ -152,9 +189,11 @@ void AddExportCommand(CLI::App& app, Invocation& invocation) {
       "tiles were lost (its hash does not check out), and a frame time the server skipped, repeat the\n"
       "last whole frame, so there is one image per frame time. A log cut short (a recorder killed\n"
       "mid-write) is exported up to its last whole event, with a message naming the byte and event where\n"
-      "it stops. Videos are made by ffmpeg (Debian's ffmpeg package) and keep the first frame's size.\n"
-      "Exit codes: 0 ok (also for a log cut short), 1 ffmpeg missing or failed or a file not written,\n"
-      "2 usage, 5 no complete frame in the log.");
+      "it stops. Videos are made by ffmpeg (Debian's ffmpeg package) and keep the first frame's size:\n"
+      "a later frame of another size (a camera size command mid-session) is scaled to fit it, keeping\n"
+      "its shape, centred on black. PNG frames keep each its own size.\n"
+      "Exit codes: 0 ok (also for a log cut short), 1 the log cannot be read, the output cannot be\n"
+      "written, or ffmpeg is missing or failed, 2 usage, 5 no complete frame in the log.");
 
   invocation.RunOnParse(export_command, [&invocation, request] {
     return Export(invocation.globals, *request, invocation.stop);

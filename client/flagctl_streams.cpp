@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "client/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
 #include "client/flagctl_link.hpp"
 #include "client/log_recorder.hpp"
@@ -147,7 +148,7 @@ int Record(const Globals& globals, const std::string& path, double duration, con
     recorder = std::make_unique<LogRecorder>(link.bus, link.channels.AllChannels(), path);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());
-    return kUsage;
+    return kFailed;  // a file that cannot be written
   }
   const double start = MonotonicSeconds();
   // A keyframe request first: the server answers with a CHECKPOINT and a full frame, so the log
@@ -177,8 +178,7 @@ int Record(const Globals& globals, const std::string& path, double duration, con
 void AddWatchCommand(CLI::App& app, Invocation& invocation) {
   CLI::App* watch = app.add_subcommand("watch", "print the state stream, a line a second");
   auto duration = std::make_shared<double>(0);
-  watch->add_option("--duration", *duration, "seconds to watch (0: until interrupted)")
-      ->check(CLI::NonNegativeNumber);
+  watch->add_option("--duration", *duration, "seconds to watch (0: until interrupted)")->check(ZeroOrMore());
   invocation.RunOnParse(
       watch, [&invocation, duration] { return Watch(invocation.globals, *duration, invocation.stop); });
 }
@@ -189,7 +189,7 @@ void AddRecordCommand(CLI::App& app, Invocation& invocation) {
   auto duration = std::make_shared<double>(0);
   record->add_option("-o,--output", *path, "the log file to write")->required();
   record->add_option("--duration", *duration, "seconds to record (0: until interrupted)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(ZeroOrMore());
   invocation.RunOnParse(record, [&invocation, path, duration] {
     return Record(invocation.globals, *path, *duration, invocation.stop);
   });
