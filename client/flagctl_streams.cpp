@@ -10,7 +10,7 @@
 #include "client/flagctl_commands.hpp"
 #include "client/flagctl_link.hpp"
 #include "client/log_recorder.hpp"
-#include "client/png_file.hpp"
+#include "client/picture_file.hpp"
 #include "client/printing.hpp"
 #include "client/tile_assembler.hpp"
 #include "flagsim/frame_t.hpp"
@@ -80,11 +80,18 @@ int Watch(const Globals& globals, double duration, const std::atomic<bool>& stop
   return kOk;
 }
 
-/// Asks for a keyframe, assembles the tiles, checks the frame hash, writes a PNG. Frames count
+/// Asks for a keyframe, assembles the tiles, checks the frame hash, writes a PNG or a JPEG as the
+/// file's name says (picture_file.hpp). Frames count
 /// once the request is answered; if no answer comes within kRefreshAnswerWait (nobody takes
 /// commands: lcm-logplayer playing a log, say), any whole frame of the stream counts, and the
 /// request is sent again now and then in case a server is there after all.
 int Snapshot(const Globals& globals, const std::string& path) {
+  std::string problem;
+  const std::optional<PictureFormat> format = PictureFormatOf(path, &problem);
+  if (!format) {  // before anything is asked of the server
+    std::fprintf(stderr, "flagctl snapshot: -o %s\n", problem.c_str());
+    return kUsage;
+  }
   Link link(globals);
   CommandClient client(link.bus, link.channels, std::min(globals.timeout, kRefreshAnswerWait));
   TileAssembler assembler;
@@ -127,10 +134,10 @@ int Snapshot(const Globals& globals, const std::string& path) {
     HandleUntil(link.bus, wait, [&] { return complete || keyframe_incomplete; });
   }
   if (!complete) return link.NoAnswer("complete frame");
-  const std::string problem = WritePng(path, width, height, picture.data());
+  problem = WritePicture(path, *format, width, height, picture.data());
   if (!problem.empty()) {
     std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
-    return 1;
+    return kFailed;
   }
   std::printf("%s: %d x %d, frame %lld, complete %.0f ms after the request%s\n", path.c_str(), width, height,
               static_cast<long long>(frame_id), 1000 * (completed - start),
@@ -196,9 +203,10 @@ void AddRecordCommand(CLI::App& app, Invocation& invocation) {
 }
 
 void AddSnapshotCommand(CLI::App& app, Invocation& invocation) {
-  CLI::App* snapshot = app.add_subcommand("snapshot", "ask for a full frame and write it as a PNG");
+  CLI::App* snapshot = app.add_subcommand("snapshot", "ask for a full frame and write it as a PNG or a JPEG");
   auto path = std::make_shared<std::string>();
-  snapshot->add_option("-o,--output", *path, "the PNG file to write")->required();
+  snapshot->add_option("-o,--output", *path, "the file to write: NAME.png, or NAME.jpg (NAME.jpeg) for JPEG")
+      ->required();
   invocation.RunOnParse(snapshot, [&invocation, path] { return Snapshot(invocation.globals, *path); });
 }
 
