@@ -1,7 +1,7 @@
 // Checks of the command line that speak as the user typed: number ranges that name their bound
-// ("above 0", not CLI11's own, which prints the largest double in full), and an unknown
-// subcommand named as such (CLI11 says only that a subcommand is required). Header-only, for
-// flagctl and flagd alike.
+// ("above 0", not CLI11's own, which prints the largest double in full), and an unknown or
+// missing subcommand named as such, with the allowed ones (CLI11 says only that one is required).
+// Header-only, for flagctl and flagd alike.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -33,21 +33,29 @@ inline CLI::Validator ZeroOrMore() {
       "NONNEGATIVE");
 }
 
-/// After a failed parse: "'WORD' is not a subcommand[ of NAME]; allowed: ..." when the deepest
-/// subcommand given wants one and WORD was left over, else "".
-inline std::string UnknownSubcommand(CLI::App& app) {
-  CLI::App* deepest = &app;
-  while (!deepest->get_subcommands().empty()) deepest = deepest->get_subcommands().front();
-  const std::vector<std::string> left = app.remaining(true);
-  if (deepest->get_require_subcommand_min() == 0 || left.empty() || left.front().rfind("-", 0) == 0) {
+/// After a parse that failed with `error`, when it failed because the deepest subcommand given
+/// wants one of its own: "'WORD' is not a subcommand[ of NAME]; allowed: ..." for a WORD left
+/// over, "NAME needs a subcommand; allowed: ..." for none; else "" (CLI11's own message says
+/// what is wrong).
+inline std::string SubcommandProblem(CLI::App& app, const CLI::ParseError& error) {
+  if (dynamic_cast<const CLI::RequiredError*>(&error) == nullptr &&
+      dynamic_cast<const CLI::ExtrasError*>(&error) == nullptr) {
     return "";
   }
+  CLI::App* deepest = &app;
+  while (!deepest->get_subcommands().empty()) deepest = deepest->get_subcommands().front();
+  if (deepest->get_require_subcommand_min() == 0) return "";
+  const std::vector<std::string> left = app.remaining(true);
+  if (!left.empty() && left.front().rfind("-", 0) == 0) return "";  // an unknown option
   std::string names;
   for (const CLI::App* command : deepest->get_subcommands([](const CLI::App*) { return true; })) {
     names += (names.empty() ? "" : ", ") + command->get_name();
   }
-  const std::string of = deepest == &app ? "" : " of " + deepest->get_name();
-  return "'" + left.front() + "' is not a subcommand" + of + "; allowed: " + names;
+  const std::string name = deepest == &app ? "" : deepest->get_name();
+  if (left.empty())
+    return (name.empty() ? "a subcommand is required" : name + " needs a subcommand") + "; allowed: " + names;
+  return "'" + left.front() + "' is not a subcommand" + (name.empty() ? "" : " of " + name) +
+         "; allowed: " + names;
 }
 
 }  // namespace flagsim

@@ -51,9 +51,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);  // the subcommand runs in its callback, at the end of the parse
   } catch (const CLI::ParseError& error) {
-    const std::string unknown = UnknownSubcommand(app);
-    if (unknown.empty()) return app.exit(error) == 0 ? kOk : kUsage;
-    std::fprintf(stderr, "flagctl: %s\n", unknown.c_str());
+    const std::string problem = SubcommandProblem(app, error);
+    if (problem.empty()) return app.exit(error) == 0 ? kOk : kUsage;
+    std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
     return kUsage;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());

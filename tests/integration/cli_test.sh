@@ -32,6 +32,8 @@ contains "'bogus' is not a subcommand" "  that names the word"
 contains "wind, set, reset" "  and lists the subcommands"
 expect 2 "an unknown camera move is a usage error" "$flagctl" camera spin 3
 contains "'spin' is not a subcommand of camera" "  that names the word"
+expect 2 "camera without a move is a usage error" "$flagctl" camera
+contains "camera needs a subcommand; allowed: rotate-x, rotate-y" "  that lists the moves"
 expect 2 "--timeout 0 is a usage error" "$flagctl" --timeout 0 status
 contains "--timeout: 0 is out of range; allowed above 0" "  with the bound as typed"
 if [[ $(wc -c <"$work/out") -lt 200 ]]; then pass "  in a short message"; else fail "  a long message" "$work/out"; fi
