@@ -96,10 +96,25 @@ std::pair<double, std::string> FrameRate(const ExportRequest& request, const Log
   return {kFallbackFrameRate, "the log tells none"};
 }
 
-/// The frames in a log, assembled and hash-checked, into PNGs or a video; `stop` ends it early.
-/// What can be checked first is: the log can be read (else 1), the output's name says what to
-/// write (else 2), its directory is there to write in (else 1).
-int Export(const Globals& globals, const ExportRequest& request, const std::atomic<bool>& stop) {
+/// Frames into the output until the log ends, the output fails or `stop`, then the output
+/// finished; "" or what went wrong. Notes whether the frames' sizes vary.
+std::string WriteFrames(LogFrames& frames, const LogSurvey& survey, const std::atomic<bool>& stop,
+                        FrameOutput* output, ProgressBar* bar, bool* sizes_vary) {
+  std::string problem;
+  while (problem.empty() && !stop.load() && frames.Next()) {
+    *sizes_vary |= frames.width() != survey.width || frames.height() != survey.height;
+    problem = output->Write(frames.image().data(), frames.width(), frames.height());
+    const EventLogReader& reader = frames.reader();
+    bar->Update(reader.size() > 0 ? double(reader.offset()) / double(reader.size()) : 1.0,
+                "frame " + std::to_string(frames.images()));
+  }
+  const std::string finished = output->Finish();
+  return problem.empty() ? finished : problem;
+}
+
+/// What is checked before any work: the log can be read (else 1), the output's name says what to
+/// write (else 2), its directory is there to write in (else 1). kOk with *kind, or the exit code.
+int CheckRequest(const ExportRequest& request, OutputKind* kind) {
   try {
     EventLogReader probe(request.log_path);
   } catch (const std::runtime_error& error) {
@@ -107,16 +122,23 @@ int Export(const Globals& globals, const ExportRequest& request, const std::atom
     return kFailed;
   }
   std::string problem;
-  const std::optional<OutputKind> kind = OutputKindOf(request.output, &problem);
-  if (!kind) {
+  const std::optional<OutputKind> named = OutputKindOf(request.output, &problem);
+  if (!named) {
     std::fprintf(stderr, "flagctl export: -o %s\n", problem.c_str());
     return kUsage;
   }
+  *kind = *named;
   problem = CheckOutputPath(*kind, request.output);
-  if (!problem.empty()) {
-    std::fprintf(stderr, "flagctl export: %s\n", problem.c_str());
-    return kFailed;
-  }
+  if (problem.empty()) return kOk;
+  std::fprintf(stderr, "flagctl export: %s\n", problem.c_str());
+  return kFailed;
+}
+
+/// The frames in a log, assembled and hash-checked, into PNGs or a video; `stop` ends it early.
+int Export(const Globals& globals, const ExportRequest& request, const std::atomic<bool>& stop) {
+  OutputKind kind = OutputKind::kPngDirectory;
+  const int checked = CheckRequest(request, &kind);
+  if (checked != kOk) return checked;
   const Channels channels(globals.prefix);
   LogSurvey survey;
   std::unique_ptr<LogFrames> frames;
@@ -128,26 +150,17 @@ int Export(const Globals& globals, const ExportRequest& request, const std::atom
   }
   if (survey.manifests == 0) return NothingToExport(request, channels, survey);
   const auto [rate, rate_source] = FrameRate(request, survey);
-  const std::unique_ptr<FrameOutput> output = MakeFrameOutput(*kind, request.output, rate);
+  const std::unique_ptr<FrameOutput> output = MakeFrameOutput(kind, request.output, rate);
 
-  // Frames into the output until the log ends, the output fails or the user interrupts.
   ProgressBar bar;
   bool sizes_vary = false;
-  while (problem.empty() && !stop.load() && frames->Next()) {
-    sizes_vary |= frames->width() != survey.width || frames->height() != survey.height;
-    problem = output->Write(frames->image().data(), frames->width(), frames->height());
-    const EventLogReader& reader = frames->reader();
-    bar.Update(reader.size() > 0 ? double(reader.offset()) / double(reader.size()) : 1.0,
-               "frame " + std::to_string(frames->images()));
-  }
-  const std::string finished = output->Finish();
-  if (problem.empty()) problem = finished;
+  const std::string problem = WriteFrames(*frames, survey, stop, output.get(), &bar, &sizes_vary);
   if (!problem.empty()) {  // what went wrong, and no summary of what was not written
     bar.Finish("flagctl export: " + problem);
     return kFailed;
   }
   bar.Finish(output->frames() > 0
-                 ? Summary(request, *output, *kind, survey, *frames, sizes_vary, rate, rate_source)
+                 ? Summary(request, *output, kind, survey, *frames, sizes_vary, rate, rate_source)
                  : "flagctl export: no frame written");
 
   ReportSkips(frames->report());
