@@ -62,7 +62,7 @@ measure() {
     END { printf "  threads=%s mean: real-time factor %.3f, %.1f frames/s (worst second %.1f), %.1f tiles and %.0f bytes a frame = %.2f %% of a raw frame\n",
                  threads, rtf / n, hz / n, worst, tiles / n, bytes / n, 100 * bytes / n / raw }' "$work/rows"
   for ((i = 0; i < snapshots; i++)); do
-    "$flagctl" --timeout 5 snapshot -o /dev/null 2>&1 | grep -o '[0-9.]* ms' | head -1 || echo "failed"
+    "$flagctl" --timeout 5 snapshot -o "$work/snapshot.png" 2>&1 | grep -o '[0-9.]* ms' | head -1 || echo "failed"
   done >"$work/snapshots"
   sort -n "$work/snapshots" | awk -v threads="$threads" '
     /ms/ { ms[n++] = $1 } /failed/ { failed++ }

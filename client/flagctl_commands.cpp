@@ -1,82 +1,30 @@
+// The subcommands that steer a server (wind, set, reset, refresh) and read its tables (params,
+// status): each a registration that sets the callback running it.
 #include "client/flagctl_commands.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
-#include "client/command_client.hpp"
-#include "client/log_recorder.hpp"
-#include "client/png_file.hpp"
+#include "client/flagctl_link.hpp"
 #include "client/printing.hpp"
-#include "client/stream_reader.hpp"
-#include "client/tile_assembler.hpp"
-#include "flagsim/camera_command_t.hpp"
-#include "flagsim/frame_t.hpp"
 #include "flagsim/param_command_t.hpp"
+#include "flagsim/params_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
-#include "flagsim/timeline_t.hpp"
+#include "flagsim/state_t.hpp"
+#include "flagsim/status_t.hpp"
 #include "flagsim/wind_command_t.hpp"
-#include "messages/bus.hpp"
-#include "messages/channels.hpp"
 
 namespace flagsim {
-
-std::atomic<bool> g_stop{false};
-
 namespace {
 
-/// The bus and channels one subcommand talks on.
-struct Link {
-  explicit Link(const Globals& globals)
-      : bus(Bus::WithReceiveBuffer(globals.lcm_url, 8 << 20)), channels(globals.prefix), globals(globals) {}
-  Bus bus;
-  Channels channels;
-  const Globals& globals;
-
-  int NoAnswer(const std::string& what) const {
-    std::fprintf(stderr, "flagctl: no %s from a server with prefix %s on %s within %g s\n", what.c_str(),
-                 channels.prefix.c_str(), bus.url().c_str(), globals.timeout);
-    return kNoAnswer;
-  }
-};
-
-int Report(const Link& link, const CommandOutcome& outcome) {
-  if (outcome.other_servers > 0) {
-    std::fprintf(stderr,
-                 "flagctl: warning: the server that answered (id %016llx) hears %d other server(s) on prefix "
-                 "%s: each takes this command too, and their streams interleave\n",
-                 static_cast<unsigned long long>(outcome.server_id), outcome.other_servers,
-                 link.channels.prefix.c_str());
-  }
-  switch (outcome.result) {
-    case CommandOutcome::kAccepted:
-      std::printf("accepted at step %lld\n", static_cast<long long>(outcome.step));
-      if (!outcome.reason.empty()) std::printf("note: %s\n", outcome.reason.c_str());
-      return kOk;
-    case CommandOutcome::kRejected:
-      std::fprintf(stderr, "flagctl: rejected: %s\n", outcome.reason.c_str());
-      return kRejected;
-    case CommandOutcome::kNoAnswer:
-      break;
-  }
-  return link.NoAnswer("answer");
-}
-
-}  // namespace
-
-int Wind(const Globals& globals, const std::vector<double>& velocity, double gust, double ramp) {
-  Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
-  wind_command_t command{};
-  for (int k = 0; k < 3; ++k) command.velocity[k] = velocity[k];
-  command.gust = gust;
-  command.ramp_time = ramp;
-  return Report(link, client.Send(link.channels.wind, command));
-}
-
-int Set(const Globals& globals, const std::vector<std::string>& assignments, bool reset) {
+/// "NAME=VALUE" assignments, each name once => a PARAM command; `reset` first restores the scene
+/// (not the camera). Exit code.
+int SendParams(const Globals& globals, const std::vector<std::string>& assignments, bool reset) {
   param_command_t command{};
   command.reset_to_scene = reset;
   for (const std::string& assignment : assignments) {
@@ -85,18 +33,24 @@ int Set(const Globals& globals, const std::vector<std::string>& assignments, boo
       std::fprintf(stderr, "flagctl: '%s' is not NAME=VALUE\n", assignment.c_str());
       return kUsage;
     }
-    command.names.push_back(assignment.substr(0, equals));
-    command.values.push_back(assignment.substr(equals + 1));
+    const std::string name = assignment.substr(0, equals), value = assignment.substr(equals + 1);
+    const auto same = std::find(command.names.begin(), command.names.end(), name);
+    if (same != command.names.end()) {
+      std::fprintf(stderr, "flagctl: %s is set twice (%s=%s, %s); give each parameter once\n", name.c_str(),
+                   name.c_str(), command.values[same - command.names.begin()].c_str(), assignment.c_str());
+      return kUsage;
+    }
+    command.names.push_back(name);
+    command.values.push_back(value);
   }
   command.num_assignments = static_cast<int32_t>(command.names.size());
-  Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
-  return Report(link, client.Send(link.channels.param, command));
+  return SendCommand(globals, &Channels::param, command);
 }
 
+/// REFRESH => ACK => the full state published for it, in a line.
 int Refresh(const Globals& globals) {
   Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
+  CommandClient client(link.bus, link.channels, globals.timeout, link.signer);
   std::optional<state_t> state;
   SubscribeDecoded<state_t>(link.bus, link.channels.state, [&state](const state_t& s) { state = s; });
   const CommandOutcome outcome = client.Send(link.channels.refresh, refresh_request_t{});
@@ -111,192 +65,62 @@ int Refresh(const Globals& globals) {
   return kOk;
 }
 
-int Params(const Globals& globals) {
-  Link link(globals);
-  const auto params = AwaitMessage<params_t>(link.bus, link.channels.params, globals.timeout);
-  if (!params) return link.NoAnswer("PARAMS");
-  PrintParams(*params, std::cout);
-  return kOk;
+}  // namespace
+
+void AddWindCommand(CLI::App& app, Invocation& invocation) {
+  CLI::App* wind =
+      app.add_subcommand("wind", "set the wind velocity (m/s, world frame: x along the flag, y up)");
+  auto command = std::make_shared<wind_command_t>();
+  auto velocity = std::make_shared<std::vector<double>>();
+  wind->add_option("velocity", *velocity, "VX VY VZ in m/s")->expected(3)->required();
+  wind->add_option("--gust", command->gust, "gust strength, fraction of the wind speed (0 .. 1)")
+      ->capture_default_str();
+  wind->add_option("--ramp", command->ramp_time, "seconds of simulated time to reach this wind (0 .. 60)")
+      ->capture_default_str();
+  invocation.RunOnParse(wind, [&invocation, command, velocity] {
+    for (int k = 0; k < 3; ++k) command->velocity[k] = (*velocity)[k];
+    return SendCommand(invocation.globals, &Channels::wind, *command);
+  });
 }
 
-int Status(const Globals& globals) {
-  Link link(globals);
-  const auto status = AwaitMessage<status_t>(link.bus, link.channels.status, globals.timeout);
-  if (!status) return link.NoAnswer("STATUS");
-  PrintStatus(*status, std::cout);
-  return kOk;
+void AddSetCommand(CLI::App& app, Invocation& invocation) {
+  CLI::App* set = app.add_subcommand("set", "set parameters: NAME=VALUE ... (see flagctl params)");
+  auto assignments = std::make_shared<std::vector<std::string>>();
+  set->add_option("assignments", *assignments, "NAME=VALUE pairs, applied together or not at all")
+      ->required();
+  invocation.RunOnParse(
+      set, [&invocation, assignments] { return SendParams(invocation.globals, *assignments, false); });
 }
 
-/// Prints one line a second about the STATE stream until `duration` (0: until interrupted).
-int Watch(const Globals& globals, double duration) {
-  Link link(globals);
-  std::optional<state_t> latest;
-  int64_t states = 0, state_bytes = 0, total_states = 0, invalid = 0;
-  std::optional<status_t> status;
-  SubscribeDecoded<state_t>(
-      link.bus, link.channels.state,
-      [&](const state_t& state) {
-        latest = state;
-        ++states;
-        ++total_states;
-        state_bytes += state.getEncodedSize();
-      },
-      &invalid, 1000);
-  SubscribeDecoded<status_t>(
-      link.bus, link.channels.status, [&status](const status_t& s) { status = s; }, &invalid);
-  int64_t frames = 0, tiles = 0, tile_bytes = 0;
-  SubscribeDecoded<frame_t>(
-      link.bus, link.channels.frame, [&frames](const frame_t&) { ++frames; }, &invalid, 1000);
-  SubscribeDecoded<tile_t>(
-      link.bus, link.channels.tile,
-      [&](const tile_t& tile) {
-        ++tiles;
-        tile_bytes += tile.num_bytes;
-      },
-      &invalid, 10000);
-  const double start = MonotonicSeconds();
-  double last_line = start;
-  while (!g_stop.load()) {
-    const double now = MonotonicSeconds();
-    if (duration > 0 && now - start >= duration) break;
-    if (total_states == 0 && now - start >= globals.timeout && duration == 0) break;
-    link.bus.Handle(50);
-    if (MonotonicSeconds() - last_line < 1.0 || !latest) continue;
-    const double elapsed = MonotonicSeconds() - last_line;
-    std::printf("t %9.3f s  step %8lld  STATE %5.1f Hz %6.1f KB  hash %016llx  tip %s  kinetic %.4g J",
-                latest->sim_time, static_cast<long long>(latest->step), states / elapsed,
-                states > 0 ? state_bytes / 1024.0 / states : 0.0,
-                static_cast<unsigned long long>(latest->state_hash), TipText(*latest).c_str(),
-                latest->kinetic_energy);
-    if (status) std::printf("  rtf %.2f  step %.0f us", status->real_time_factor, status->step_time_us);
-    if (frames > 0) {
-      std::printf("  FRAME %4.1f Hz %5.1f tiles/frame %7.1f KB/s", frames / elapsed, double(tiles) / frames,
-                  tile_bytes / 1024.0 / elapsed);
-    }
-    std::printf("\n");
-    std::fflush(stdout);
-    states = state_bytes = frames = tiles = tile_bytes = 0;
-    last_line = MonotonicSeconds();
-  }
-  if (invalid > 0)
-    std::fprintf(stderr, "flagctl: %lld undecodable message(s) ignored\n", static_cast<long long>(invalid));
-  if (total_states == 0) return link.NoAnswer("STATE");
-  std::printf("%lld states received\n", static_cast<long long>(total_states));
-  return kOk;
+void AddResetCommand(CLI::App& app, Invocation& invocation) {
+  CLI::App* reset = app.add_subcommand(
+      "reset",
+      "restore the scene's parameters, wind and timeline, flag at rest; the camera stays (camera reset)");
+  auto assignments = std::make_shared<std::vector<std::string>>();
+  reset->add_option("assignments", *assignments, "NAME=VALUE pairs to apply after the reset");
+  invocation.RunOnParse(
+      reset, [&invocation, assignments] { return SendParams(invocation.globals, *assignments, true); });
 }
 
-/// Asks for a keyframe, assembles the tiles, checks the frame hash, writes a PNG. Frames count
-/// once the request is answered; if no answer comes within kRefreshAnswerWait (nobody takes
-/// commands: lcm-logplayer playing a log, say), any whole frame of the stream counts, and the
-/// request is sent again now and then in case a server is there after all.
-int Snapshot(const Globals& globals, const std::string& path) {
-  constexpr double kRefreshAnswerWait = 1.0;  // s
-  Link link(globals);
-  CommandClient client(link.bus, link.channels, std::min(globals.timeout, kRefreshAnswerWait), globals.signer);
-  TileAssembler assembler;
-  bool counting = false;  // frames count: after our request was answered, or with nobody answering
-  bool complete = false, keyframe_incomplete = false;
-  // The whole frame, copied as it completes: the assembler goes on with later frames.
-  std::vector<uint8_t> picture;
-  int width = 0, height = 0;
-  int64_t frame_id = -1;
-  double completed = 0;  // s, monotonic: when the whole frame was there (before the PNG is written)
-  SubscribeDecoded<tile_t>(
-      link.bus, link.channels.tile, [&](const tile_t& tile) { assembler.AddTile(tile); }, nullptr, 10000);
-  SubscribeDecoded<frame_t>(
-      link.bus, link.channels.frame,
-      [&](const frame_t& manifest) {
-        const bool whole = assembler.AddManifest(manifest) == TileAssembler::FrameResult::kComplete;
-        if (!counting || complete) return;
-        if (whole) {
-          picture = assembler.image();
-          width = assembler.width();
-          height = assembler.height();
-          frame_id = manifest.frame_id;
-          completed = MonotonicSeconds();
-        }
-        complete = whole;
-        keyframe_incomplete |= manifest.keyframe && !whole;
-      },
-      nullptr, 1000);
-  const double start = MonotonicSeconds(), deadline = start + globals.timeout;
-  bool answered = false;
-  while (!complete && MonotonicSeconds() < deadline) {
-    // A keyframe that arrived with tiles missing calls for another request (a new id).
-    keyframe_incomplete = false;
-    const CommandOutcome outcome = client.Send(link.channels.refresh, refresh_request_t{});
-    if (outcome.result == CommandOutcome::kRejected) return Report(link, outcome);
-    answered |= outcome.result == CommandOutcome::kAccepted;
-    counting = true;
-    const double wait =
-        std::min(deadline - MonotonicSeconds(), answered ? globals.timeout : kRefreshAnswerWait);
-    HandleUntil(link.bus, wait, [&] { return complete || keyframe_incomplete; });
-  }
-  if (!complete) return link.NoAnswer("complete frame");
-  const std::string problem = WritePng(path, width, height, picture.data());
-  if (!problem.empty()) {
-    std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
-    return 1;
-  }
-  std::printf("%s: %d x %d, frame %lld, complete %.0f ms after the request%s\n", path.c_str(), width, height,
-              static_cast<long long>(frame_id), 1000 * (completed - start),
-              answered
-                  ? ""
-                  : " (no server answered it: a stream that takes no commands, such as a log playing back)");
-  return kOk;
+void AddParamsCommand(CLI::App& app, Invocation& invocation) {
+  CLI::App* params = app.add_subcommand("params", "print the parameter table with current values");
+  invocation.RunOnParse(params, [&invocation] {
+    return AwaitAndPrint<params_t>(invocation.globals, &Channels::params, "PARAMS",
+                                   [](const params_t& message) { PrintParams(message, std::cout); });
+  });
 }
 
-int Camera(const Globals& globals, camera_command_t command) {
-  Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
-  return Report(link, client.Send(link.channels.camera, command));
+void AddStatusCommand(CLI::App& app, Invocation& invocation) {
+  CLI::App* status = app.add_subcommand("status", "print the server's health");
+  invocation.RunOnParse(status, [&invocation] {
+    return AwaitAndPrint<status_t>(invocation.globals, &Channels::status, "STATUS",
+                                   [](const status_t& message) { PrintStatus(message, std::cout); });
+  });
 }
 
-int SendKeyframe(const Globals& globals, const keyframe_command_t& command) {
-  Link link(globals);
-  CommandClient client(link.bus, link.channels, globals.timeout, globals.signer);
-  return Report(link, client.Send(link.channels.keyframe, command));
-}
-
-int Timeline(const Globals& globals) {
-  Link link(globals);
-  const auto timeline = AwaitMessage<timeline_t>(link.bus, link.channels.timeline, globals.timeout);
-  if (!timeline) return link.NoAnswer("TIMELINE");
-  PrintTimeline(*timeline, std::cout);
-  return kOk;
-}
-
-/// Records every channel with the prefix to an LCM log until `duration` or an interrupt.
-int Record(const Globals& globals, const std::string& path, double duration) {
-  Link link(globals);
-  std::unique_ptr<LogRecorder> recorder;
-  try {
-    recorder = std::make_unique<LogRecorder>(link.bus, link.channels.AllChannels(), path);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "flagctl: %s\n", error.what());
-    return kUsage;
-  }
-  const double start = MonotonicSeconds();
-  // A keyframe request first: the server answers with a CHECKPOINT and a full frame, so the log
-  // replays (flagd replay) and exports (flagctl export) from its beginning. Recorded meanwhile;
-  // nobody may answer (a log playing back), and the recording goes on regardless.
-  CommandClient(link.bus, link.channels, std::min(globals.timeout, 1.0), globals.signer)
-      .Send(link.channels.refresh, refresh_request_t{});
-  while (!g_stop.load() && !recorder->failed()) {
-    const double now = MonotonicSeconds();
-    if (duration > 0 && now - start >= duration) break;
-    if (recorder->events() == 0 && now - start >= globals.timeout && duration == 0) break;
-    link.bus.Handle(50);
-  }
-  if (recorder->failed()) {
-    std::fprintf(stderr, "flagctl: writing %s failed after %lld events\n", path.c_str(),
-                 static_cast<long long>(recorder->events()));
-    return 1;
-  }
-  std::printf("%s: %lld events, %.1f KB in %.1f s\n", path.c_str(),
-              static_cast<long long>(recorder->events()), recorder->bytes() / 1024.0,
-              MonotonicSeconds() - start);
-  return recorder->events() > 0 ? kOk : link.NoAnswer("message");
+void AddRefreshCommand(CLI::App& app, Invocation& invocation) {
+  CLI::App* refresh = app.add_subcommand("refresh", "request a full state (and frame) now");
+  invocation.RunOnParse(refresh, [&invocation] { return Refresh(invocation.globals); });
 }
 
 }  // namespace flagsim

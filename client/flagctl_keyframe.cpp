@@ -1,12 +1,39 @@
-#include "client/flagctl_keyframe.hpp"
-
+// flagctl keyframe: the animation timeline's subcommands, their command line and what they do.
+//   keyframe add T [--wind VX VY VZ [--gust G]] [--set NAME=VALUE ...]
+//                  [--eye X Y Z --target X Y Z --fov F] [--law step|linear|smooth|cubic]
+//   keyframe change T [--time T2] [the options of add]   the key's other controls stay
+//   keyframe remove T | clear | list | play | pause | seek T | loop on|off | speed S
+// Exit codes as every subcommand's: 0 ok, 2 usage, 3 rejected (the reason printed), 4 no answer.
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
 
+#include "client/flagctl_commands.hpp"
+#include "client/flagctl_link.hpp"
+#include "client/printing.hpp"
 #include "flagsim/keyframe_command_t.hpp"
+#include "flagsim/timeline_t.hpp"
 
 namespace flagsim {
 namespace {
+
+/// What the keyframe subcommands were given on the command line.
+struct KeyframeArguments {
+  std::string operation;     ///< the subcommand's name: add, change, remove, ...
+  double time = 0;           ///< s of timeline time: the key (add, change, remove), the seek target
+  double new_time = 0;       ///< change --time: s, where the key moves
+  std::vector<double> wind;  ///< m/s, VX VY VZ; empty: the key sets no wind
+  double gust = 0;           ///< fraction of the wind speed
+  std::vector<std::string> assignments;  ///< NAME=VALUE, parameters the key sets
+  std::vector<double> eye, target;       ///< m, X Y Z; empty: the key sets no camera
+  double fov = 40;                       ///< degrees, vertical
+  std::string law;                       ///< step, linear, smooth, cubic; empty: linear (add), kept (change)
+  std::string loop;                      ///< on or off
+  double speed = 1;                      ///< timeline s per simulated s
+};
 
 const std::vector<std::string> kLaws = {"step", "linear", "smooth", "cubic"};  // LAW_* order
 
@@ -74,14 +101,42 @@ int8_t OperationCode(const std::string& operation) {
   return keyframe_command_t::SPEED;
 }
 
+/// The command the arguments describe, sent (or, for list, the TIMELINE stream's next message
+/// printed): the exit code.
+int Keyframe(const Globals& globals, const KeyframeArguments& arguments) {
+  if (arguments.operation == "list") {
+    return AwaitAndPrint<timeline_t>(globals, &Channels::timeline, "TIMELINE",
+                                     [](const timeline_t& message) { PrintTimeline(message, std::cout); });
+  }
+  keyframe_command_t command{};
+  command.operation = OperationCode(arguments.operation);
+  command.time = arguments.time;
+  command.speed = arguments.speed;
+  command.loop = arguments.loop == "on";
+  command.keep_law = arguments.operation == "change" && arguments.law.empty();
+  if (arguments.operation == "add" || arguments.operation == "change") {
+    const std::string problem = BuildKey(arguments, &command.key);
+    if (!problem.empty()) {
+      std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
+      return kUsage;
+    }
+  }
+  return SendCommand(globals, &Channels::keyframe, command);
+}
+
 }  // namespace
 
-CLI::App* AddKeyframeCommand(CLI::App& app, KeyframeArguments* arguments) {
+void AddKeyframeCommand(CLI::App& app, Invocation& invocation) {
+  const auto shared = std::make_shared<KeyframeArguments>();
+  KeyframeArguments* arguments = shared.get();
   CLI::App* keyframe = app.add_subcommand("keyframe", "edit and play the animation timeline (times in s)");
   keyframe->require_subcommand(1);
   const auto add = [&](const char* name, const char* help) {
     CLI::App* command = keyframe->add_subcommand(name, help);
-    command->callback([arguments, name] { arguments->operation = name; });
+    invocation.RunOnParse(command, [&invocation, shared, name] {
+      shared->operation = name;
+      return Keyframe(invocation.globals, *shared);
+    });
     return command;
   };
   CLI::App* add_key = add("add", "add a key at T s (replacing one there): any of wind, parameters, camera");
@@ -105,25 +160,6 @@ CLI::App* AddKeyframeCommand(CLI::App& app, KeyframeArguments* arguments) {
   add("speed", "timeline seconds per simulated second")
       ->add_option("speed", arguments->speed, "above 0, up to 100")
       ->required();
-  return keyframe;
-}
-
-int Keyframe(const Globals& globals, const KeyframeArguments& arguments) {
-  if (arguments.operation == "list") return Timeline(globals);
-  keyframe_command_t command{};
-  command.operation = OperationCode(arguments.operation);
-  command.time = arguments.time;
-  command.speed = arguments.speed;
-  command.loop = arguments.loop == "on";
-  command.keep_law = arguments.operation == "change" && arguments.law.empty();
-  if (arguments.operation == "add" || arguments.operation == "change") {
-    const std::string problem = BuildKey(arguments, &command.key);
-    if (!problem.empty()) {
-      std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
-      return kUsage;
-    }
-  }
-  return SendKeyframe(globals, command);
 }
 
 }  // namespace flagsim

@@ -1,12 +1,16 @@
 // flagctl serve: the live view's gateway (client/gateway/serve.hpp) on the bus of the globals.
 #include <cstdio>
+#include <memory>
 
 #include "client/flagctl_commands.hpp"
 #include "client/gateway/serve.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
+#include "messages/command_key.hpp"
 
 namespace flagsim {
+
+namespace {
 
 int Serve(const Globals& globals, const gateway::ServeOptions& options) {
   // A deep receive buffer: frames arrive as bursts of tiles (as for every flagctl reader).
@@ -14,8 +18,38 @@ int Serve(const Globals& globals, const gateway::ServeOptions& options) {
   const Channels channels(globals.prefix);
   gateway::ServeOptions serve = options;
   serve.command_timeout = globals.timeout;
-  serve.signer = globals.signer;
+  if (!globals.key_file.empty()) serve.signer = CommandSigner(ReadKeyFile(globals.key_file).front());
   return gateway::Serve(bus, channels, serve);
+}
+
+}  // namespace
+
+void AddServeCommand(CLI::App& app, Invocation& invocation) {
+  auto options = std::make_shared<gateway::ServeOptions>();
+  gateway::ServeOptions& serve_options = *options;
+  CLI::App* serve = app.add_subcommand(
+      "serve",
+      "serve the live view to browsers and Foxglove (the Foxglove WebSocket protocol) until interrupted");
+  serve->add_option("--listen", serve_options.listen, "HOST:PORT to listen on (port 0: any free one)")
+      ->capture_default_str();
+  serve
+      ->add_option(
+          "--token", serve_options.token,
+          "required on every request (?token=, a bearer header, or the page's cookie); generated when "
+          "listening beyond loopback without one; from $FLAGSIM_TOKEN if set, which keeps it out of "
+          "process listings")
+      ->envname("FLAGSIM_TOKEN");
+  serve->add_option(
+      "--allow-origin", serve_options.allow_origins,
+      "a browser origin allowed besides the gateway's own, e.g. https://app.foxglove.dev; * for any");
+  serve->add_option("--record-dir", serve_options.record_directory, "where the page's recordings go")
+      ->capture_default_str();
+  serve->footer(
+      "Commands from browsers go out as WIND, PARAM, CAMERA, KEYFRAME and REFRESH and are answered with\n"
+      "the server's ACK; --timeout is how long the gateway waits for one. The protocol, channels and\n"
+      "services are in docs/live-view.md.");
+
+  invocation.RunOnParse(serve, [&invocation, options] { return Serve(invocation.globals, *options); });
 }
 
 }  // namespace flagsim

@@ -1,5 +1,9 @@
 #include "client/frame_output.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -46,6 +50,28 @@ std::optional<OutputKind> OutputKindOf(const std::string& path, std::string* err
   *error = "cannot tell what to write from '" + path +
            "'; allowed: a directory (ending in / or existing) for PNG frames, NAME.mp4 or NAME.gif";
   return std::nullopt;
+}
+
+// path => the directory it goes in (for a PNG directory the nearest that exists) => writable?
+std::string CheckOutputPath(OutputKind kind, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (kind != OutputKind::kPngDirectory && fs::is_directory(path, error)) {
+    return "cannot write " + path + ": it is a directory";
+  }
+  fs::path directory = kind == OutputKind::kPngDirectory ? fs::path(path) : fs::path(path).parent_path();
+  if (directory.empty()) directory = ".";
+  while (kind == OutputKind::kPngDirectory && !fs::exists(directory, error)) {  // made when written
+    const fs::path parent = directory.parent_path();
+    directory = parent.empty() ? fs::path(".") : parent;
+  }
+  if (!fs::is_directory(directory, error)) {
+    return "cannot write " + path + ": there is no directory " + directory.string();
+  }
+  if (access(directory.c_str(), W_OK) != 0) {
+    return "cannot write " + path + ": " + directory.string() + ": " + std::strerror(errno);
+  }
+  return "";
 }
 
 std::unique_ptr<FrameOutput> MakeFrameOutput(OutputKind kind, const std::string& path, double frame_rate) {

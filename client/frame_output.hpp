@@ -3,6 +3,9 @@
 //   DIR/ or an existing directory   PNG files frame_000000.png, frame_000001.png, ...
 //   NAME.mp4                        H.264 (libx264, yuv420p; odd sizes padded to even) by ffmpeg
 //   NAME.gif                        a GIF by ffmpeg, each frame with its own palette
+//
+// A video keeps the first frame's size: later frames of another size are scaled to fit it,
+// keeping their shape, on black. PNG frames keep each its own size.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +20,10 @@ enum class OutputKind { kPngDirectory, kMp4, kGif };
 /// The kind of output `path` names; nullopt with *error naming what is allowed if none.
 std::optional<OutputKind> OutputKindOf(const std::string& path, std::string* error);
 
+/// "" if an output of `kind` can be made at `path` (its directory, or the nearest that exists,
+/// is a directory we may write in), else what stands in the way: checked before any work.
+std::string CheckOutputPath(OutputKind kind, const std::string& path);
+
 class FrameOutput {
  public:
   virtual ~FrameOutput() = default;
@@ -25,6 +32,8 @@ class FrameOutput {
   /// Completes the output (a video's encoder finishes); "" or what went wrong.
   virtual std::string Finish() = 0;
   virtual int64_t frames() const = 0;  ///< images written
+  /// Of them, images of another size than the first, scaled to fit it (a video has one size).
+  virtual int64_t fitted() const { return 0; }
 };
 
 /// An output of `kind` at `path`; a video plays at `frame_rate` Hz. Nothing is created on disk

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "client/image_fit.hpp"
+
 namespace flagsim {
 
 VideoOutput::VideoOutput(std::string path, VideoFormat format, double frame_rate)
@@ -41,12 +43,14 @@ std::string VideoOutput::Write(const uint8_t* rgb, int width, int height) {
     if (!problem.empty()) {
       return problem + "; Debian's ffmpeg package provides it (scripts/install-deps.sh installs it)";
     }
-  } else if (width != width_ || height != height_) {
-    return "a frame of " + std::to_string(width) + " x " + std::to_string(height) + " px after " +
-           std::to_string(frames_) + " of " + std::to_string(width_) + " x " + std::to_string(height_) +
-           ": a video keeps one size (export to a directory for every frame)";
   }
-  const std::string problem = ffmpeg_.Write(rgb, size_t(width) * height * 3);
+  std::vector<uint8_t> fitted;
+  if (width != width_ || height != height_) {  // a video keeps one size: the first frame's
+    fitted = FitImage(rgb, width, height, width_, height_);
+    rgb = fitted.data();
+    ++fitted_;
+  }
+  const std::string problem = ffmpeg_.Write(rgb, size_t(width_) * height_ * 3);
   if (!problem.empty()) return problem + " (" + ffmpeg_.Finish() + ") writing " + path_;
   ++frames_;
   return "";

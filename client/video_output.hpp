@@ -6,7 +6,8 @@
 //   gif   each frame with a palette of its own (palettegen and paletteuse, frame by frame, so
 //         memory stays one frame whatever the length), looping
 //
-// Every frame must have the first frame's size: a video has one.
+// A video has one size, the first frame's: a later frame of another size is scaled to fit it,
+// keeping its shape, centred on black (image_fit.hpp).
 #pragma once
 
 #include <cstdint>
@@ -24,11 +25,12 @@ class VideoOutput final : public FrameOutput {
  public:
   VideoOutput(std::string path, VideoFormat format, double frame_rate);
 
-  /// The first frame starts ffmpeg. Returns "" or what went wrong: ffmpeg missing or failed,
-  /// or a frame of another size than the first.
+  /// The first frame starts ffmpeg; a frame of another size is fitted to the first's. Returns ""
+  /// or what went wrong: ffmpeg missing or failed.
   std::string Write(const uint8_t* rgb, int width, int height) override;
   std::string Finish() override;
   int64_t frames() const override { return frames_; }
+  int64_t fitted() const override { return fitted_; }
 
   /// ffmpeg's arguments for `width` x `height` frames at `frame_rate` Hz into `path`.
   static std::vector<std::string> Arguments(VideoFormat format, const std::string& path, int width,
@@ -41,6 +43,7 @@ class VideoOutput final : public FrameOutput {
   ChildProcess ffmpeg_;
   int width_ = 0, height_ = 0;
   int64_t frames_ = 0;
+  int64_t fitted_ = 0;  ///< frames of another size than the first, scaled to fit it
 };
 
 }  // namespace flagsim

@@ -4,15 +4,19 @@
 // CHECKPOINT), with --record-inputs into a log of its own too. `flagd render` runs a scene
 // offline instead, into an LCM log and PNG frames (render_command.hpp); `flagd replay` steps a
 // recorded session again and checks it (replay_command.hpp).
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 
+#include "client/cli_checks.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
 #include "messages/command_key.hpp"
@@ -38,7 +42,7 @@ struct Options {
   flagsim::RenderRequest render;
   std::string replay_log;  ///< flagd replay LOG
   flagsim::ReplayOptions replay;
-  double render_fps = 0;               ///< 0: the scene's frame_rate
+  double render_fps = std::nan("");    ///< Hz; NaN: the scene's frame_rate
   int render_threads = 0;              ///< 0: the scene's threads
   std::vector<std::string> key_files;  ///< --key-file: commands must be signed with one of their keys
 };
@@ -87,15 +91,13 @@ CLI::App* AddRenderCommand(CLI::App& app, Options& options) {
   render->add_option("--set", options.assignments, "override a parameter: NAME=VALUE (repeatable)");
   render->add_option("--duration", options.render.duration, "seconds of simulated time to render")
       ->required()
-      ->check(CLI::PositiveNumber);
-  render
-      ->add_option("--fps", options.render_fps,
-                   "frames per second of simulated time (default: the scene's frame_rate, 30)")
-      ->check(CLI::PositiveNumber);
+      ->check(flagsim::AboveZero());
+  render->add_option("--fps", options.render_fps,
+                     "frames per second of simulated time, above 0 (default: the scene's frame_rate, 30)");
   render->add_option("-o,--output", options.render.log_path, "the LCM log to write");
   render->add_option("--png-dir", options.render.png_dir, "also write each frame there as frame_%06d.png");
   render->add_option("--threads", options.render_threads, "worker threads (default: the scene's threads)")
-      ->check(CLI::PositiveNumber);
+      ->check(flagsim::AboveZero());
   render->add_option("--prefix", options.prefix, "channel prefix in the log")->capture_default_str();
   return render;
 }
@@ -109,7 +111,16 @@ void ApplyRenderOverrides(const Options& options, flagsim::Scene* scene) {
     const std::string problem = flagsim::ParameterTable::Get().Assign(name, text, scene);
     if (!problem.empty()) throw flagsim::SceneError(std::string(option) + " " + problem);
   };
-  if (options.render_fps > 0) assign("--fps", "frame_rate", options.render_fps);
+  if (!std::isnan(options.render_fps)) {
+    // frame_rate 0 is a live server's "no frames"; a render's frames are what it is for.
+    const flagsim::Parameter& rate = *flagsim::ParameterTable::Get().Find("frame_rate");
+    if (!(options.render_fps > 0) || options.render_fps > rate.max_value) {
+      throw flagsim::SceneError("--fps: " + rate.Format(options.render_fps) +
+                                " is out of range; a render draws frames, so allowed above 0 .. " +
+                                rate.Format(rate.max_value) + " " + rate.unit);
+    }
+    assign("--fps", "frame_rate", options.render_fps);
+  }
   if (options.render_threads > 0) assign("--threads", "threads", options.render_threads);
 }
 
@@ -139,7 +150,7 @@ int main(int argc, char** argv) {
   app.add_flag("--fast", options.server.fast, "step as fast as possible instead of in real time");
   app.add_option("--duration", options.server.duration,
                  "stop after this many simulated seconds (0: run until stopped)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(flagsim::ZeroOrMore());
   app.add_option("--record-inputs", options.server.inputs_log,
                  "also write what a replay needs (each applied command, the checkpoints) into this LCM "
                  "log, for `flagd replay`");
@@ -167,6 +178,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? 0 : 2;
   }
+  // Logs go to stderr, as a command's diagnostics do; stdout is for what a command reports.
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("", std::make_shared<spdlog::sinks::stderr_color_sink_mt>()));
   spdlog::set_level(spdlog::level::from_str(options.log_level));
   if (replay->parsed()) {
     options.replay.prefix = options.prefix;

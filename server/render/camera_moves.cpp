@@ -43,6 +43,15 @@ std::string CheckFov(double radians) {
          " degrees of vertical field of view";
 }
 
+/// An angle given in rad, reported in degrees (flagctl and the live view take degrees).
+std::string CheckAngle(const char* field, double radians) {
+  if (std::isfinite(radians) && std::abs(radians) <= CameraMove::kMaxAngle) return "";
+  const double degrees = radians * 180 / M_PI, limit = CameraMove::kMaxAngle * 180 / M_PI;
+  return std::string(field) + ": " + Number(degrees) + " degrees is " +
+         (std::isfinite(degrees) ? "out of range" : "not finite") + "; allowed " + Number(-limit) + " .. " +
+         Number(limit) + " degrees";
+}
+
 /// The field whose value moves the eye in `operation`, for a reason that names it.
 const char* FieldMovingTheEye(int operation) {
   switch (operation) {
@@ -66,10 +75,10 @@ std::string Check(const CameraMove& m) {
     case M::kRotateX:
     case M::kRotateY:
     case M::kRotateZ:
-      return CheckRange("angle", m.angle, -M::kMaxAngle, M::kMaxAngle, "rad");
+      return CheckAngle("angle", m.angle);
     case M::kOrbit: {
-      const std::string problem = CheckRange("angle", m.angle, -M::kMaxAngle, M::kMaxAngle, "rad");
-      return problem.empty() ? CheckRange("angle2", m.angle2, -M::kMaxAngle, M::kMaxAngle, "rad") : problem;
+      const std::string problem = CheckAngle("angle", m.angle);
+      return problem.empty() ? CheckAngle("angle2", m.angle2) : problem;
     }
     case M::kTranslate:
     case M::kLookAt:

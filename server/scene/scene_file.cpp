@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -315,10 +316,15 @@ std::string PresetText(const std::string& name) {
 Scene LoadScene(const std::string& preset_or_path) {
   const std::string preset = PresetText(preset_or_path);
   if (!preset.empty()) return ParseScene(preset, preset_or_path);
+  std::string presets;
+  for (const std::string& name : PresetNames()) presets += (presets.empty() ? "" : ", ") + name;
+  std::error_code ignored;
+  if (std::filesystem::is_directory(preset_or_path, ignored)) {
+    throw SceneError("'" + preset_or_path +
+                     "' is a directory; give a scene file (.toml) or a preset: " + presets);
+  }
   std::ifstream file(preset_or_path);
   if (!file) {
-    std::string presets;
-    for (const std::string& name : PresetNames()) presets += (presets.empty() ? "" : ", ") + name;
     throw SceneError("no scene file '" + preset_or_path +
                      "' and no preset of that name; presets: " + presets);
   }

@@ -31,6 +31,14 @@ std::string Printable(std::string text) {
   return text;
 }
 
+/// Whether a command must be signed when the server has keys: all but a reader's question,
+/// which changes nothing.
+template <class Command>
+bool NeedsSignature(const Command&) {
+  return true;
+}
+bool NeedsSignature(const refresh_request_t& request) { return !request.tables_only; }
+
 /// What an accepted command set: the wind, the camera, parameters by name.
 struct CommandSets {
   bool wind = false;
@@ -85,9 +93,12 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   std::string error;
   const std::optional<Command> command = wire::CheckedDecode<Command>(data, size, kMaxCommandBytes, &error);
   if (!command) return Drop(channel, error);
-  const CommandAuthenticator::Verdict verdict = authenticator_.Check(channel, *command, UnixMicros());
-  if (verdict.refusal != CommandAuthenticator::Refusal::kNone)
-    return Refuse(channel, command->client_id, command->sequence, verdict);
+  const bool question = !NeedsSignature(*command);
+  if (!question) {
+    const CommandAuthenticator::Verdict verdict = authenticator_.Check(channel, *command, UnixMicros());
+    if (verdict.refusal != CommandAuthenticator::Refusal::kNone)
+      return Refuse(channel, command->client_id, command->sequence, verdict);
+  }
 
   const auto previous = last_ack_.find(command->client_id);
   if (previous != last_ack_.end() && previous->second.sequence == command->sequence) {
@@ -107,6 +118,7 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   if (ack.reason.empty()) ack.reason = (this->*apply)(*command);
   ack.accepted = ack.reason.empty();
   if (ack.accepted) ack.reason = note_;
+  if (question) return Answer(ack, recoveries);  // answered, not counted or logged as a command
   if (ack.accepted) {
     // What changes the session goes into the journal; a REFRESH changes nothing.
     if (journal_ != nullptr && channel != channels_.refresh)
@@ -179,6 +191,10 @@ std::string CommandIntake::ApplyParams(const param_command_t& command) {
 
 std::string CommandIntake::ApplyRefresh(const refresh_request_t& command) {
   if (command.sequence < 0) return "sequence: " + std::to_string(command.sequence) + "; allowed 0 and up";
+  if (command.tables_only) {
+    tables_request_ = true;
+    return "";
+  }
   refresh_request_ = command.sequence;  // coalesced: requests before the next frame make one keyframe
   return "";
 }

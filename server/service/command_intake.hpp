@@ -74,6 +74,8 @@ class CommandIntake {
   /// Once after REFRESH requests: the latest request id (a full STATE and PARAMS and a
   /// keyframe are due); -1 when none came.
   int64_t TakeRefreshRequest() { return std::exchange(refresh_request_, -1); }
+  /// True once after tables-only REFRESH requests (PARAMS, TIMELINE and STATUS are due).
+  bool TakeTablesRequest() { return std::exchange(tables_request_, false); }
 
  private:
   template <class Command>
@@ -113,6 +115,7 @@ class CommandIntake {
   bool timeline_changed_ = false;
   std::string note_;  ///< for the ACK of the command being applied, if it is accepted
   int64_t refresh_request_ = -1;
+  bool tables_request_ = false;
   double last_drop_log_ = -1;  ///< wall s of the last logged drop (drops are logged once a second)
   int64_t drops_since_log_ = 0;
   double refusal_second_ = -1;      ///< wall s when the current second of refusals began

@@ -122,8 +122,17 @@ void Server::PublishDue(double now) {
     keyframe_request_ = request;  // the latest, if several
     frame_due_ = true;            // the keyframe goes out now, not at the next frame time
   }
-  if (intake_.TakeParamsChanged() || std::exchange(integrator_replaced_, false) || refresh) PublishParams();
-  if (intake_.TakeTimelineChanged() || refresh) PublishTimeline();
+  // A client asking for the tables (flagctl status) has them at once, the last second's report
+  // too; questions are coalesced and answered at most kTablesPerSecond times a second.
+  tables_asked_ |= intake_.TakeTablesRequest();
+  const bool tables = refresh || (tables_asked_ && now - tables_answered_ >= 1.0 / kTablesPerSecond);
+  if (tables) {
+    tables_asked_ = false;
+    tables_answered_ = now;
+  }
+  if (intake_.TakeParamsChanged() || std::exchange(integrator_replaced_, false) || tables) PublishParams();
+  if (intake_.TakeTimelineChanged() || tables) PublishTimeline();
+  if (tables && last_status_) bus_.Publish(channels_.status, *last_status_);
   if (now >= next_second_) {
     PublishParams();
     PublishTimeline();
@@ -198,6 +207,7 @@ void Server::PublishStatus(double now) {
   status.other_servers = presence_.others();
   status.command_authentication = intake_.Authentication();
   bus_.Publish(channels_.status, status);
+  last_status_ = status;
   stats_.ResetWindow();
   window_wall_start_ = now;
   window_sim_start_ = session_.simulation().state().time;

@@ -5,7 +5,8 @@
 //                        --fast: steps back to back
 //          publish       STATE every 1/state_rate of simulated time (BoundarySchedule: at the
 //                        steps a render publishes it), and at once on REFRESH; PARAMS and
-//                        TIMELINE each second and after a change; STATUS each second
+//                        TIMELINE each second, after a change and on REFRESH; STATUS each
+//                        second, and the last second's again on REFRESH
 //          frame         every 1/frame_rate of simulated time (BoundarySchedule): a copy of
 //                        what the frame shows goes to the frame stage, and the loop steps on
 //          wait          on the bus until the next step or publication is due
@@ -19,12 +20,15 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "flagsim/status_t.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
 #include "messages/command_key.hpp"
@@ -74,6 +78,7 @@ class Server {
   std::string authentication() const { return intake_.Authentication(); }
 
   static constexpr double kMaxCatchUp = 0.1;  ///< s of wall time a late loop may step to catch up
+  static constexpr double kTablesPerSecond = 10;  ///< most answers to tables-only REFRESH questions
 
  private:
   void StepDue(double now);
@@ -112,6 +117,9 @@ class Server {
   double window_sim_start_ = 0;       ///< simulated time at the last STATUS
   double window_wall_start_ = 0;      ///< wall time at the last STATUS
   uint64_t window_bytes_start_ = 0;
+  std::optional<status_t> last_status_;  ///< the last second's report, published again on REFRESH
+  bool tables_asked_ = false;            ///< a tables-only REFRESH waits for its answer
+  double tables_answered_ = -INFINITY;   ///< s on the clock: when tables last went out for a question
 };
 
 }  // namespace flagsim

@@ -66,6 +66,7 @@ std::string Edit(const TimelineEdit& edit, sim::Timeline* timeline) {
       timeline->Clear();
       return "";
     case TimelineEdit::kPlay:
+      if (timeline->keys().empty()) return "operation: play with no keys; add one first (keyframe add)";
       timeline->Play();
       return "";
     case TimelineEdit::kPause:
@@ -148,6 +149,8 @@ std::string Session::ApplyParams(const ParamChange& change) {
   }
   // Work on a copy; the session changes only if every assignment and the whole are valid.
   Scene next = change.reset_to_scene ? AtTimelineStart(initial_) : scene_;
+  // A reset restarts the physics; the camera is the viewer's and has a reset of its own.
+  if (change.reset_to_scene) next.camera = scene_.camera;
   std::string problems;
   for (const auto& [name, value] : change.assignments) {
     const std::string problem = ParameterTable::Get().Assign(name, value, &next);

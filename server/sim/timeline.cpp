@@ -229,6 +229,11 @@ bool Timeline::Remove(double time) {
       std::find_if(keys_.begin(), keys_.end(), [time](const Keyframe& key) { return key.time == time; });
   if (at == keys_.end()) return false;
   keys_.erase(at);
+  if (keys_.empty()) {
+    Clear();  // back to 0, as after clear
+  } else if (position_ > End()) {
+    position_ = End();  // it stays on the timeline
+  }
   return true;
 }
 

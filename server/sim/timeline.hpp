@@ -84,7 +84,8 @@ class Timeline {
   const std::vector<Keyframe>& keys() const { return keys_; }
   /// Inserts `key`, replacing a key at the same time. Returns true if it replaced one.
   bool Add(const Keyframe& key);
-  /// Removes the key at `time`; false if there is none.
+  /// Removes the key at `time`; false if there is none. A position past the new last key moves to
+  /// it; with no key left the position goes back to 0, as after Clear.
   bool Remove(double time);
   /// Removes every key; the position goes back to 0 (play, loop and speed stay).
   void Clear();

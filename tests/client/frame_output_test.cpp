@@ -62,16 +62,31 @@ TEST(VideoOutput, FfmpegGetsTheSizeRateAndAFileNameThatIsNoOption) {
   EXPECT_EQ(gif.back(), "file:a b.gif");
 }
 
-TEST(VideoOutput, AFrameOfAnotherSizeIsRefused) {
+// A video keeps the first frame's size: a later frame of another size is fitted to it, and
+// counted, rather than ending the video.
+TEST(VideoOutput, AFrameOfAnotherSizeIsFittedToTheFirst) {
   const std::string path = std::string(::testing::TempDir()) + "/" + std::to_string(getpid()) + "_size.mp4";
   if (FindOnPath("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed (scripts/install-deps.sh)";
   VideoOutput video(path, VideoFormat::kMp4, 10);
   std::vector<uint8_t> rgb(16 * 16 * 3, 100);
   ASSERT_EQ(video.Write(rgb.data(), 16, 16), "");
-  EXPECT_NE(video.Write(rgb.data(), 8, 16).find("a video keeps one size"), std::string::npos);
+  EXPECT_EQ(video.Write(rgb.data(), 8, 16), "");
+  EXPECT_EQ(video.Write(rgb.data(), 16, 16), "");
   EXPECT_EQ(video.Finish(), "");
-  EXPECT_EQ(video.frames(), 1);
+  EXPECT_EQ(video.frames(), 3);
+  EXPECT_EQ(video.fitted(), 1);
   std::filesystem::remove(path);
+}
+
+TEST(CheckOutputPath, TheDirectoryMustBeThereToWriteIn) {
+  const std::string scratch = ::testing::TempDir();
+  EXPECT_EQ(CheckOutputPath(OutputKind::kMp4, scratch + "/run.mp4"), "");
+  EXPECT_EQ(CheckOutputPath(OutputKind::kGif, "run.gif"), "");                       // here
+  EXPECT_EQ(CheckOutputPath(OutputKind::kPngDirectory, scratch + "/not/yet/"), "");  // made when written
+  EXPECT_EQ(CheckOutputPath(OutputKind::kPngDirectory, "frames/"), "");
+  EXPECT_EQ(CheckOutputPath(OutputKind::kMp4, "/nonexistent/out.mp4"),
+            "cannot write /nonexistent/out.mp4: there is no directory /nonexistent");
+  EXPECT_EQ(CheckOutputPath(OutputKind::kMp4, scratch), "cannot write " + scratch + ": it is a directory");
 }
 
 }  // namespace

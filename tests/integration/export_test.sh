@@ -51,7 +51,7 @@ contains "--png-dir" "  lists its options"
 expect 2 "render with nothing to write" "$flagd" render --duration 1
 contains "give -o LOG, --png-dir DIR or both" "  says what to give"
 expect 2 "render at an fps out of range" "$flagd" render --duration 1 -o "$work/x.lcmlog" --fps 500
-contains "allowed 0 .. 120 Hz" "  with the range"
+contains "allowed above 0 .. 120 Hz" "  with the range"
 expect 0 "flagd's own command line still runs" "$flagd" --fast --duration 0.2 --log-level warn
 
 echo "-- flagctl export"
@@ -85,16 +85,40 @@ if ((got > 0 && got < expected)); then pass "  fewer frames ($got of $expected)"
 last=frame_$(printf %06d $((got - 1))).png
 equal "$(pixels "$work/cut/$last")" "$(pixels "$work/rendered/$last")" "  the last one exported is the frame flagd drew"
 
+echo "-- a size change mid-log"
+# Two runs of different sizes and shapes, one after the other in one log (as a camera size
+# command mid-session leaves it): one video at the first size, later frames scaled to fit.
+cat >"$work/tall.toml" <<'TOML'
+name = "tall"
+[camera]
+width = 120
+height = 160
+TOML
+expect 0 "a second render at 120 x 160" "$flagd" render --scene "$work/tall.toml" --duration 0.5 --fps $fps \
+  -o "$work/tall.lcmlog" --set cols=24 --set rows=16
+cat "$log" "$work/tall.lcmlog" >"$work/sizes.lcmlog"
+tall_frames=$(awk -v d=0.5 -v f=$fps 'BEGIN { n = d * f; print (n == int(n)) ? n : int(n) + 1 }')
+expect 0 "export of both into one MP4" "$flagctl" export "$work/sizes.lcmlog" -o "$work/sizes.mp4"
+matches "note: [1-9][0-9]* frame\(s\) of another size than the first \(200 x 115\) scaled to fit it" \
+  "  saying what it did"
+equal "$(frames_in "$work/sizes.mp4")" "$((expected + tall_frames))" "  every frame of both in the video"
+equal "$(ffprobe -v error -select_streams v:0 -show_entries stream=width,height -of csv=p=0 "$work/sizes.mp4")" \
+  "200,116" "  at the first frame's size (padded to even)"
+
 echo "-- bad input"
 expect 2 "an output that is neither directory, .mp4 nor .gif" "$flagctl" export "$log" -o "$work/run.avi"
 contains "allowed: a directory (ending in / or existing) for PNG frames, NAME.mp4 or NAME.gif" "  names the allowed ones"
-expect 2 "a log that is not there" "$flagctl" export "$work/none.lcmlog" -o "$work/none/"
+expect 1 "a log that is not there" "$flagctl" export "$work/none.lcmlog" -o "$work/none/"
 contains "none.lcmlog" "  is named"
 head -c 5000 /dev/urandom >"$work/noise.lcmlog"
 expect 5 "a file that is not a log" "$flagctl" export "$work/noise.lcmlog" -o "$work/noise/"
 contains "not an LCM event log" "  says so"
 expect 5 "a log with no frames on the prefix" "$flagctl" --prefix OTHER_ export "$log" -o "$work/other/"
 contains "no complete frame on OTHER_FRAME" "  says so"
+expect 1 "a video into a directory that is not there" "$flagctl" export "$log" -o /nonexistent/out.mp4
+contains "cannot write /nonexistent/out.mp4: there is no directory /nonexistent" "  says so"
+if [[ $(wc -l <"$work/out") == 1 ]]; then pass "  in one line: no ffmpeg error, no summary of frames not written"
+else fail "  in more than one line" "$work/out"; fi
 mkdir "$work/empty-path"
 expect 1 "no ffmpeg on PATH" env PATH="$work/empty-path" "$flagctl" export "$log" -o "$work/none.mp4"
 contains "ffmpeg is not installed" "  says so"

@@ -55,7 +55,8 @@ local kCheckpointHashOffset = kFingerprintBytes + 3 * 8            -- checkpoint
 local kFrameHashOffset = kFingerprintBytes + 4 * 8 + 3 * 4 + 1 + 8  -- frame_t: utime .. request_id
 local kPixelHashOffset = kFingerprintBytes + 8 + 8 + 4 + 4 * 2 + 1  -- tile_t: utime .. encoding
 local kStatusFixedBeforeIntegrator = kFingerprintBytes + 6 * 8 + 3 * 4  -- status_t: utime .. threads
-local kStatusFixedBetweenStrings = 1 + 8 * 8 + 8 + 8 + 4 * 8     -- sleeping .. recoveries
+local kStatusFixedBetweenStrings = 1 + 8 * 8 + 8 + 8 + 3 * 8 + 5 * 8 + 8
+                                         -- sleeping .. messages_dropped, commands_unsigned .. recoveries
 
 local printers = {
   STATE = function(data)
@@ -71,7 +72,7 @@ local printers = {
   STATUS = function(data)
     local m = flagsim.status_t.decode(data)
     local server_id = OffsetAfter(kStatusFixedBeforeIntegrator + kStatusFixedBetweenStrings,
-                                  {m.integrator, m.last_recovery})
+                                  {m.integrator, m.command_authentication, m.last_recovery})
     return string.format("STATUS step=%d integrator=%s threads=%d server_id=%s", m.step, m.integrator,
                          m.threads, Int64Hex(data, server_id))
   end,

@@ -156,6 +156,28 @@ TEST(CameraMoves, AFieldOfViewOutOfRangeIsReportedInDegrees) {
   }
 }
 
+// Rotations and the orbit's angles are typed in degrees (flagctl, the live view): so are their reasons.
+TEST(CameraMoves, AnAngleOutOfRangeIsReportedInDegrees) {
+  for (const int operation : {CameraMove::kRotateX, CameraMove::kOrbit}) {
+    for (const double degrees : {1e9, -400.0}) {
+      Camera camera;
+      CameraMove move = Move(operation);
+      move.angle = degrees * M_PI / 180;  // as flagctl sends it
+      char expected[128];
+      std::snprintf(expected, sizeof(expected),
+                    "angle: %g degrees is out of range; allowed -360 .. 360 degrees", degrees);
+      const std::string reason = ApplyCameraMove(move, &camera);
+      EXPECT_EQ(reason, expected);
+      EXPECT_EQ(camera.eye, Camera{}.eye);
+    }
+  }
+  CameraMove orbit = Move(CameraMove::kOrbit);
+  orbit.angle2 = 720 * M_PI / 180;
+  Camera camera;
+  EXPECT_EQ(ApplyCameraMove(orbit, &camera),
+            "angle2: 720 degrees is out of range; allowed -360 .. 360 degrees");
+}
+
 TEST(CameraMoves, OrbitNeverFailsBecauseOfTheGround) {
   Camera camera;
   CameraMove orbit = Move(CameraMove::kOrbit);

@@ -178,5 +178,17 @@ TEST(SceneFile, UnknownPathListsThePresets) {
   }
 }
 
+// A directory opens as a stream that reads as an empty file: it would be the defaults.
+TEST(SceneFile, ADirectoryIsRefused) {
+  const std::string directory = std::string(FLAGSIM_SOURCE_DIR) + "/scenes";
+  try {
+    LoadScene(directory);
+    FAIL() << "loaded a directory";
+  } catch (const SceneError& error) {
+    EXPECT_NE(std::string(error.what()).find("'" + directory + "' is a directory"), std::string::npos)
+        << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace flagsim

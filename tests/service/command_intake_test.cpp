@@ -608,6 +608,20 @@ TEST_F(SignedCommandIntakeTest, ACommandSentAgainFromTheBusIsReplayedAndAnOldOne
   EXPECT_EQ(applied_.size(), 2u);
 }
 
+TEST_F(SignedCommandIntakeTest, AReadersQuestionNeedsNoSignatureButAKeyframeRequestDoes) {
+  CommandClient reader(bus_, channels_, 5.0);
+  reader.WhileWaiting([this] { server_.Tick(MonotonicSeconds()); });
+  refresh_request_t question{};
+  question.tables_only = true;
+  EXPECT_EQ(reader.Send(channels_.refresh, question).result, CommandOutcome::kAccepted);
+  const CommandOutcome keyframe = reader.Send(channels_.refresh, refresh_request_t{});
+  EXPECT_EQ(keyframe.result, CommandOutcome::kRejected);
+  EXPECT_EQ(keyframe.reason.rfind("unsigned: ", 0), 0u) << keyframe.reason;
+  // The question is neither a command taken nor one refused.
+  EXPECT_EQ(server_.stats().commands_accepted, 0);
+  EXPECT_EQ(Refused(CommandAuthenticator::Refusal::kUnsigned), 1);
+}
+
 TEST_F(SignedCommandIntakeTest, AFloodOfForgeriesIsCountedAndFewAreAnswered) {
   constexpr int kForgeries = 20000, kBatch = 200;
   wind_command_t forged{};

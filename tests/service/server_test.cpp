@@ -21,6 +21,7 @@
 #include "messages/checked_decode.hpp"
 #include "messages/event_log_reader.hpp"
 #include "server/service/offline_render.hpp"
+#include "tests/messages/message_fixtures.hpp"
 
 namespace flagsim {
 namespace {
@@ -177,6 +178,69 @@ TEST_F(ServerTest, ARefreshIsAnsweredByAKeyframeThatNamesIt) {
   ASSERT_EQ(manifests_.size(), 1u);
   EXPECT_TRUE(manifests_.front().keyframe);
   EXPECT_GE(manifests_.front().request_id, 0);
+}
+
+// A client asking for the tables (flagctl params, status, keyframe list) sends a REFRESH: PARAMS,
+// TIMELINE and the last second's STATUS come at once, not at the next second.
+TEST_F(ServerTest, ARefreshPublishesTheTablesAtOnce) {
+  scene_.service.frame_rate = 0;
+  Server server(bus_, channels_, scene_, options_);
+  int params = 0, statuses = 0, timelines = 0;
+  const auto count = [this](const std::string& channel, int* counter) {
+    bus_.Subscribe(channel, [counter](const std::string&, const uint8_t*, size_t) { ++*counter; });
+  };
+  count(channels_.params, &params);
+  count(channels_.status, &statuses);
+  count(channels_.timeline, &timelines);
+  for (; now_ < 1.25; now_ += kDt) server.Tick(now_);  // past the first second's publications
+  bus_.HandleAll();
+  ASSERT_GE(statuses, 1);  // a last second's report to publish again
+  params = statuses = timelines = 0;
+  CommandClient client(bus_, channels_, 5.0);
+  const double asked = now_;
+  client.WhileWaiting([&] {
+    now_ += kDt;
+    server.Tick(now_);
+  });
+  ASSERT_EQ(client.Send(channels_.refresh, refresh_request_t{}).result, CommandOutcome::kAccepted);
+  server.Tick(now_);
+  bus_.HandleAll();
+  EXPECT_LT(now_ - asked, 0.5);  // far from the next second
+  EXPECT_EQ(params, 1);
+  EXPECT_EQ(timelines, 1);
+  EXPECT_EQ(statuses, 1);
+}
+
+// A reader's question (a tables-only REFRESH) gets the tables, not a checkpoint or a keyframe,
+// and a burst of questions no more than kTablesPerSecond answers a second.
+TEST_F(ServerTest, AQuestionGetsTheTablesAndNoMoreThanTenTimesASecond) {
+  scene_.service.frame_rate = 0;
+  Server server(bus_, channels_, scene_, options_);
+  int params = 0, statuses = 0, checkpoints = 0;
+  const auto count = [this](const std::string& channel, int* counter) {
+    bus_.Subscribe(channel, [counter](const std::string&, const uint8_t*, size_t) { ++*counter; });
+  };
+  count(channels_.params, &params);
+  count(channels_.status, &statuses);
+  count(channels_.checkpoint, &checkpoints);
+  for (; now_ < 1.25; now_ += kDt) server.Tick(now_);
+  bus_.HandleAll();
+  params = statuses = checkpoints = 0;
+  refresh_request_t question{};
+  question.tables_only = true;
+  question.client_id = "reader";
+  const double start = now_;
+  for (int k = 0; k < 30; ++k) {  // 30 questions over 0.3 s of the clock
+    question.sequence = k;
+    const std::vector<uint8_t> bytes = testing::Encode(question);
+    bus_.Publish(channels_.refresh, bytes.data(), bytes.size());
+    for (int tick = 0; tick < 5; ++tick) server.Tick(now_ += 0.002);
+  }
+  bus_.HandleAll();
+  ASSERT_LT(now_ - start, 0.75);  // no periodic publication in between
+  EXPECT_EQ(params, 3);           // at 0, 0.1 and 0.2 s after the first
+  EXPECT_EQ(statuses, 3);
+  EXPECT_EQ(checkpoints, 0);
 }
 
 }  // namespace

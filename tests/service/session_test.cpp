@@ -232,11 +232,41 @@ TEST(Session, ParametersMustSuitTheTimelineAndResetRestoresIt) {
   EXPECT_EQ(session.scene().sim.integrator, scene.sim.integrator);
 
   ASSERT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kClear)), "");
-  ASSERT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kPlay)), "");
+  ASSERT_NE(session.scene().timeline, scene.timeline);
   ParamChange reset;
   reset.reset_to_scene = true;
   ASSERT_EQ(session.ApplyParams(reset), "");
   EXPECT_EQ(session.scene().timeline, scene.timeline);
+}
+
+// Play needs a key to play: without one it is refused and the timeline stays paused.
+TEST(Session, PlayWithoutKeysIsRefused) {
+  Session session{Scene{}};
+  EXPECT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kPlay)),
+            "operation: play with no keys; add one first (keyframe add)");
+  EXPECT_FALSE(session.scene().timeline.playing());
+  EXPECT_FALSE(session.scene().timeline.gliding());
+}
+
+// A reset restores the physics (parameters, wind, the flag at rest); the camera stays where the
+// viewer put it.
+TEST(Session, AResetKeepsTheCamera) {
+  Session session{Scene{}};
+  render::CameraMove orbit;
+  orbit.operation = render::CameraMove::kOrbit;
+  orbit.angle = 0.5;
+  ASSERT_EQ(session.ApplyCamera(orbit), "");
+  const render::Camera moved = session.scene().camera;
+  ASSERT_NE(moved.eye, Scene{}.camera.eye);
+  ParamChange change;
+  change.assignments = {{"stiffness", "2500"}};
+  ASSERT_EQ(session.ApplyParams(change), "");
+  ParamChange reset;
+  reset.reset_to_scene = true;
+  ASSERT_EQ(session.ApplyParams(reset), "");
+  EXPECT_EQ(session.scene().sim.forces.stiffness, Scene{}.sim.forces.stiffness);
+  EXPECT_EQ(session.scene().camera.eye, moved.eye);
+  EXPECT_EQ(session.scene().camera.target, moved.target);
 }
 
 /// A session whose timeline turns and strengthens the wind, stiffens the cloth and moves the

@@ -208,6 +208,20 @@ TEST(Timeline, WithoutKeysNothingMoves) {
   EXPECT_EQ(timeline.Evaluate(0), Controls{});
 }
 
+// Removing keys never leaves the position past the end: it moves to the new last key, and with
+// no key left back to 0.
+TEST(Timeline, RemovingTheLastKeysKeepsThePositionOnTheTimeline) {
+  Timeline timeline = ThreeKeys(ControlLaw::kLinear);
+  timeline.Seek(3.5);
+  ASSERT_TRUE(timeline.Remove(4));
+  EXPECT_EQ(timeline.position(), 2);
+  ASSERT_TRUE(timeline.Remove(0));
+  EXPECT_EQ(timeline.position(), 2);
+  ASSERT_TRUE(timeline.Remove(2));
+  EXPECT_EQ(timeline.position(), 0);
+  EXPECT_EQ(timeline.End(), 0);
+}
+
 // Plays `steps` steps of dt and returns the largest change of stiffness from one to the next.
 double LargestStepChange(Timeline* timeline, double dt, int steps) {
   double largest = 0, last = ParameterAt(*timeline, timeline->position());
