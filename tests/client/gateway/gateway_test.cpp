@@ -225,6 +225,43 @@ TEST_F(GatewayTest, ARejectedCommandSaysWhyAndChangesNothing) {
   EXPECT_EQ(server_.session().scene().wind.velocity, before);
 }
 
+// A server with keys takes the page's commands when the gateway signs them (flagctl serve
+// --key-file), and refuses them, with the reason, when it does not.
+TEST(GatewayWithKeys, TheServerTakesWhatTheGatewaySigns) {
+  CommandKey key;
+  key.name = "ops";
+  key.secret.fill(3);
+  Bus bus("memq://");
+  Channels channels;
+  ServerOptions keyed{true, 0, {}};
+  keyed.command_keys = {key};
+  Server server(bus, channels, SmallScene(), keyed);
+  GatewayOptions signing, plain;
+  signing.record_directory = plain.record_directory = ::testing::TempDir() + "/gateway_test_recordings";
+  signing.signer = CommandSigner(key);
+  Gateway signed_gateway(bus, channels, signing), plain_gateway(bus, channels, plain);
+  FakeClient signed_page(signed_gateway), plain_page(plain_gateway);
+  signed_page.Call(kWindService, 1, R"({"velocity": [7, 0, 0]})");
+  plain_page.Call(kWindService, 2, R"({"velocity": [3, 0, 0]})");
+  const double give_up = MonotonicSeconds() + 30;
+  while (MonotonicSeconds() < give_up &&
+         (signed_page.responses.count(1) == 0 || plain_page.responses.count(2) == 0)) {
+    server.Tick(MonotonicSeconds());
+    bus.HandleAll();
+    signed_gateway.Tick();
+    plain_gateway.Tick();
+    signed_page.Read();
+    plain_page.Read();
+  }
+  ASSERT_EQ(signed_page.responses.count(1), 1u);
+  ASSERT_EQ(plain_page.responses.count(2), 1u);
+  EXPECT_TRUE(signed_page.responses[1]["accepted"]) << signed_page.responses[1];
+  EXPECT_FALSE(plain_page.responses[2]["accepted"]);
+  EXPECT_EQ(plain_page.responses[2]["reason"].get<std::string>().rfind("unsigned: ", 0), 0u)
+      << plain_page.responses[2];
+  EXPECT_EQ(server.session().scene().wind.velocity, (sim::Vec3{7, 0, 0}));
+}
+
 TEST_F(GatewayTest, RequestsThatAreNoCommandFailTheCallWithTheReason) {
   client_.Call(kCameraService, 1, "not json");
   client_.Call(kCameraService, 2, R"({"operation": "spin"})");
