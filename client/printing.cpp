@@ -90,12 +90,12 @@ void PrintStatus(const status_t& status, std::ostream& out) {
   const int64_t refused = status.commands_unsigned + status.commands_unknown_key + status.commands_bad_mac +
                           status.commands_replayed + status.commands_stale;
   if (refused > 0) {
-    std::snprintf(text, sizeof(text),
-                  "refused:           %lld unsigned, %lld unknown key, %lld bad MAC, %lld replayed, %lld stale\n",
-                  static_cast<long long>(status.commands_unsigned),
-                  static_cast<long long>(status.commands_unknown_key),
-                  static_cast<long long>(status.commands_bad_mac),
-                  static_cast<long long>(status.commands_replayed), static_cast<long long>(status.commands_stale));
+    std::snprintf(
+        text, sizeof(text),
+        "refused:           %lld unsigned, %lld unknown key, %lld bad MAC, %lld replayed, %lld stale\n",
+        static_cast<long long>(status.commands_unsigned), static_cast<long long>(status.commands_unknown_key),
+        static_cast<long long>(status.commands_bad_mac), static_cast<long long>(status.commands_replayed),
+        static_cast<long long>(status.commands_stale));
     out << text;
   }
   std::snprintf(text, sizeof(text), "server:            id %016llx",

@@ -495,7 +495,6 @@ TEST_F(CommandIntakeTest, TheAckSaysWhenAPlayingTimelineDrivesWhatACommandSet) {
       << outcome.reason;
 }
 
-
 // With keys, only commands signed with one of them steer the server; the rest are answered with
 // the kind of refusal, counted, and change nothing.
 class SignedCommandIntakeTest : public ::testing::Test {
@@ -516,10 +515,10 @@ class SignedCommandIntakeTest : public ::testing::Test {
     bus_.Subscribe(channels_.wind, [this](const std::string&, const uint8_t* data, size_t size) {
       sent_.assign(data, data + size);  // the bytes a client put on the bus: what a recorder sees
     });
-    SubscribeDecoded<ack_t>(bus_, channels_.ack, [this](const ack_t& ack) { acks_.push_back(ack); }, nullptr,
-                            100000);
-    SubscribeDecoded<applied_command_t>(bus_, channels_.applied,
-                                        [this](const applied_command_t& applied) { applied_.push_back(applied); });
+    SubscribeDecoded<ack_t>(
+        bus_, channels_.ack, [this](const ack_t& ack) { acks_.push_back(ack); }, nullptr, 100000);
+    SubscribeDecoded<applied_command_t>(
+        bus_, channels_.applied, [this](const applied_command_t& applied) { applied_.push_back(applied); });
   }
 
   /// A wind command sent by a client that signs with `signer`, waited for.
