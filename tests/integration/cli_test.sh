@@ -96,4 +96,18 @@ contains "play with no keys" "  and says why"
 expect 0 "the timeline" "$flagctl" --prefix $prefix keyframe list
 contains "paused at 0 s of 0 s, speed 1, loop off, 0 key(s)" "  is still paused, not gliding"
 
+echo "-- a camera size change mid-session, exported"
+"$flagctl" --prefix $prefix record -o "$work/resized.lcmlog" --duration 3 >"$work/record.out" 2>&1 &
+recorder=$!
+sleep 1  # some frames at the first size before the change
+expect 0 "camera size mid-session" "$flagctl" --prefix $prefix camera size 320 180
+wait "$recorder" || fail "the recording" "$work/record.out"
+if command -v ffprobe >/dev/null; then
+  expect 0 "export of the whole session into one MP4" "$flagctl" --prefix $prefix export "$work/resized.lcmlog" -o "$work/resized.mp4"
+  matches "note: [1-9][0-9]* frame\(s\) of another size than the first \(1280 x 720\) scaled to fit it" \
+    "  the frames after the change scaled to the first size"
+  size=$(ffprobe -v error -select_streams v:0 -show_entries stream=width,height -of csv=p=0 "$work/resized.mp4")
+  if [[ $size == 1280,720 ]]; then pass "  one video at 1280 x 720"; else fail "  the video is $size"; fi
+fi
+
 finish
