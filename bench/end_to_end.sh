@@ -49,8 +49,18 @@ measure() {
   sleep 3  # past start-up and the first keyframe
   echo "threads=$threads: one STATUS a second for $seconds s"
   printf '  %-8s %-8s %-8s %-12s %-12s %-10s\n' second rtf frames tiles/frame bytes/frame skipped
+  local last_uptime=""
   for ((i = 1; i <= seconds; i++)); do
-    "$flagctl" --timeout 3 status >"$work/status" || continue
+    # flagctl status answers at once with the last second's report: wait most of a second, then
+    # ask until a new one is out (few calls: each is a process on the cores being measured).
+    sleep 0.8
+    for ((poll = 0; poll < 20; poll++)); do
+      "$flagctl" --timeout 3 status >"$work/status" || continue
+      uptime=$(awk '/^uptime:/ { print $2 }' "$work/status")
+      [[ $uptime != "$last_uptime" ]] && break
+      sleep 0.25
+    done
+    last_uptime=$uptime
     awk -v i="$i" '
       /real-time factor/ { rtf = $3 }
       /^frames:/ { hz = $2; tiles = $12; bytes = $15; skipped = $18 }
