@@ -97,9 +97,7 @@ int Snapshot(const Globals& globals, const std::string& path) {
   TileAssembler assembler;
   bool counting = false;  // frames count: after our request was answered, or with nobody answering
   bool complete = false, keyframe_incomplete = false;
-  // The whole frame, copied as it completes: the assembler goes on with later frames.
-  std::vector<uint8_t> picture;
-  int width = 0, height = 0;
+  // The whole frame is the assembler's image once complete: the bus is not handled after that.
   int64_t frame_id = -1;
   double completed = 0;  // s, monotonic: when the whole frame was there (before the PNG is written)
   SubscribeDecoded<tile_t>(
@@ -110,9 +108,6 @@ int Snapshot(const Globals& globals, const std::string& path) {
         const bool whole = assembler.AddManifest(manifest) == TileAssembler::FrameResult::kComplete;
         if (!counting || complete) return;
         if (whole) {
-          picture = assembler.image();
-          width = assembler.width();
-          height = assembler.height();
           frame_id = manifest.frame_id;
           completed = MonotonicSeconds();
         }
@@ -134,7 +129,8 @@ int Snapshot(const Globals& globals, const std::string& path) {
     HandleUntil(link.bus, wait, [&] { return complete || keyframe_incomplete; });
   }
   if (!complete) return link.NoAnswer("complete frame");
-  problem = WritePicture(path, *format, width, height, picture.data());
+  const int width = assembler.width(), height = assembler.height();
+  problem = WritePicture(path, *format, width, height, assembler.image().data());
   if (!problem.empty()) {
     std::fprintf(stderr, "flagctl: %s\n", problem.c_str());
     return kFailed;

@@ -74,6 +74,8 @@ class CommandIntake {
   /// Once after REFRESH requests: the latest request id (a full STATE and PARAMS and a
   /// keyframe are due); -1 when none came.
   int64_t TakeRefreshRequest() { return std::exchange(refresh_request_, -1); }
+  /// Whether a keyframe request waits to be taken.
+  bool RefreshPending() const { return refresh_request_ >= 0; }
   /// True once after tables-only REFRESH requests (PARAMS, TIMELINE and STATUS are due).
   bool TakeTablesRequest() { return std::exchange(tables_request_, false); }
 

@@ -11,8 +11,8 @@ namespace flagsim {
 namespace {
 
 constexpr double kFastBatch = 0.005;  ///< s of the clock stepped back to back in --fast mode
-/// s of the clock a loop that is behind steps before it turns to the bus and the publications
-/// again: a command (a REFRESH) waits no longer than this for its turn.
+/// s of the clock a loop that is behind steps before it turns to the publications again; a
+/// keyframe request, looked for after every step, ends the batch at once.
 constexpr double kSteppingBatch = 0.01;
 constexpr double kMaxWait = 0.05;        ///< s, the longest the loop sleeps on the bus
 constexpr double kKeyframeWait = 0.001;  ///< s, the loop's sleep while a keyframe waits for the stage
@@ -71,8 +71,9 @@ double Server::Tick(double now) {
 
 // Real time: the accumulator owes the simulation the clock's time since the last tick, in whole
 // steps; a loop that fell far behind drops the excess rather than spiralling. --fast: steps for
-// kFastBatch of the clock (at least one), then the bus gets its turn. In real time a batch ends
-// after kSteppingBatch of the clock, and what is still owed is stepped at the next tick.
+// kFastBatch of the clock (at least one), then the publications get their turn. In real time a
+// batch ends after kSteppingBatch of the clock, and what is still owed is stepped at the next
+// tick. The bus is handled after every step: a keyframe request ends the batch.
 void Server::StepDue(double now) {
   const double dt = session_.scene().sim.dt;
   accumulator_ = options_.fast ? 0.0 : std::min(accumulator_ + (now - last_tick_), kMaxCatchUp);
@@ -90,6 +91,10 @@ void Server::StepDue(double now) {
     accumulator_ -= dt;
     AfterStep();
     if (end >= deadline) break;
+    // Commands take effect at the next step's start, as if the batch ended here; a keyframe
+    // request ends it, so that its frame need not wait for the rest of the batch.
+    bus_.HandleAll();
+    if (intake_.RefreshPending()) break;
   }
   if (options_.fast) accumulator_ = 0;
 }
@@ -132,7 +137,10 @@ void Server::PublishDue(double now) {
   }
   if (intake_.TakeParamsChanged() || std::exchange(integrator_replaced_, false) || tables) PublishParams();
   if (intake_.TakeTimelineChanged() || tables) PublishTimeline();
-  if (tables && last_status_) bus_.Publish(channels_.status, *last_status_);
+  if (tables && last_status_) {
+    last_status_->other_servers = presence_.others();  // who is on the prefix is news, not history
+    bus_.Publish(channels_.status, *last_status_);
+  }
   if (now >= next_second_) {
     PublishParams();
     PublishTimeline();

@@ -143,12 +143,18 @@ contains "states received" "  and see states"
 echo "-- a second server on the same prefix"
 "$flagd" --prefix $prefix --log-level warn >"$work/second.log" 2>&1 &
 second=$!
-for _ in $(seq 50); do  # until the first hears the second's STATUS
-  "$flagctl" --prefix $prefix --timeout 0.5 status 2>/dev/null | grep -q "other server" && break
+# Until a server has heard the other's STATUS (either may answer a status question first).
+counted=0
+for _ in $(seq 50); do
+  if "$flagctl" --prefix $prefix --timeout 0.5 status >"$work/out" 2>&1 &&
+    grep -q "1 other server(s) on this prefix" "$work/out"; then
+    counted=1
+    break
+  fi
   sleep 0.2
 done
-expect 0 "status names the other server" "$flagctl" --prefix $prefix status
-contains "1 other server(s) on this prefix" "  and counts it"
+if ((counted)); then pass "status names the other server and counts it"
+else fail "no status counted the other server" "$work/out"; fi
 expect 0 "a command both take is accepted" "$flagctl" --prefix $prefix wind 6 0 1
 contains "hears 1 other server(s) on prefix $prefix" "  with a warning that another took it too"
 kill -TERM "$second"
