@@ -19,8 +19,6 @@ CollisionCulling::CollisionCulling(int cols, int rows)
     : cols_(cols),
       mesh_(BuildClothMesh(cols, rows)),
       patches_(BuildClothPatches(mesh_, cols, rows, kPatchCells)) {
-  triangle_box_.resize(mesh_.triangles.size());
-  edge_box_.resize(mesh_.edges.size());
   leaf_region_.resize(patches_.patches.size());
   for (size_t r = 0; r < patches_.regions.size(); ++r) {
     if (patches_.regions[r].leaf()) leaf_region_[patches_.regions[r].patch] = int(r);
@@ -61,18 +59,16 @@ void CollisionCulling::SweptBoxes() {
   }
 }
 
-// The swept boxes of a patch's triangles and owned edges, their nodes' together: made only for
-// the patches a pair names, as most of the flag is culled before.
-void CollisionCulling::BoxPatch(int p) {
-  const ClothPatch& patch = patches_.patches[p];
-  for (int t : patch.triangles) {
-    const auto [a, b, c] = mesh_.triangles[t];
-    triangle_box_[t] = node_box_[a].Joined(node_box_[b]).Joined(node_box_[c]);
-  }
-  for (int e : patch.owned_edges) {
-    const auto [a, b] = mesh_.edges[e];
-    edge_box_[e] = node_box_[a].Joined(node_box_[b]);
-  }
+// The swept box of a triangle or an edge: its nodes' together. Made when a patch pair asks, as
+// most of the flag is culled before.
+CollisionCulling::Box CollisionCulling::TriangleBox(int t) const {
+  const auto [a, b, c] = mesh_.triangles[t];
+  return node_box_[a].Joined(node_box_[b]).Joined(node_box_[c]);
+}
+
+CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
+  const auto [a, b] = mesh_.edges[e];
+  return node_box_[a].Joined(node_box_[b]);
 }
 
 // Every triangle's normal (unnormalised) at the step's start and end, the longer, and a bound
@@ -210,14 +206,6 @@ bool CollisionCulling::Separated(int p, int q) const {
 // parallel), the lists joined in the pairs' order: the same candidates in the same order at any
 // thread count.
 void CollisionCulling::Candidates() {
-  boxed_.assign(patches_.patches.size(), false);
-  named_.clear();
-  for (const auto& pair : patch_pairs_) {
-    for (int p : pair) {
-      if (!std::exchange(boxed_[p], true)) named_.push_back(p);
-    }
-  }
-  ParallelFor(int(named_.size()), threads_, [&](int i) { BoxPatch(named_[i]); });
   const int count = int(patch_pairs_.size());
   if (int(pair_candidates_.size()) < count) pair_candidates_.resize(count);
   near_.resize(threads_);
@@ -237,31 +225,35 @@ void CollisionCulling::Candidates() {
 // p's own nodes against q's triangles; p's own edges against q's own edges (for a patch with
 // itself, each edge pair once; for two patches, called both ways, the edges once). Only the
 // primitives inside the other patch's box take part (`near` is scratch for them).
-void CollisionCulling::AddPairs(int p, int q, std::vector<int>* near,
+void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
                                 std::vector<PrimitivePair>* found) const {
   const ClothPatch &from = patches_.patches[p], &to = patches_.patches[q];
   const Box &from_box = region_box_[leaf_region_[p]], &to_box = region_box_[leaf_region_[q]];
   near->clear();
   for (int node : from.owned_nodes) {
-    if (node_box_[node].Overlaps(to_box)) near->push_back(node);
+    if (node_box_[node].Overlaps(to_box)) near->push_back({node, node_box_[node]});
   }
   for (int t : to.triangles) {
-    if (!triangle_box_[t].Overlaps(from_box)) continue;
-    for (int node : *near) {
-      if (mesh_.HasCorner(t, node) || !node_box_[node].Overlaps(triangle_box_[t])) continue;
-      const PrimitivePair pair{false, node, t};
+    const Box box = TriangleBox(t);
+    if (!box.Overlaps(from_box)) continue;
+    for (const Near& node : *near) {
+      if (mesh_.HasCorner(t, node.index) || !node.box.Overlaps(box)) continue;
+      const PrimitivePair pair{false, node.index, t};
       if (!Immobile(pair)) found->push_back(pair);
     }
   }
   if (p > q) return;
   near->clear();
   for (int e : from.owned_edges) {
-    if (edge_box_[e].Overlaps(to_box)) near->push_back(e);
+    const Box box = EdgeBox(e);
+    if (box.Overlaps(to_box)) near->push_back({e, box});
   }
   for (int f : to.owned_edges) {
-    if (!edge_box_[f].Overlaps(from_box)) continue;
-    for (int e : *near) {
-      if ((p == q && f <= e) || mesh_.Adjacent(e, f) || !edge_box_[e].Overlaps(edge_box_[f])) continue;
+    const Box box = EdgeBox(f);
+    if (!box.Overlaps(from_box)) continue;
+    for (const Near& edge : *near) {
+      const int e = edge.index;
+      if ((p == q && f <= e) || mesh_.Adjacent(e, f) || !edge.box.Overlaps(box)) continue;
       const PrimitivePair pair{true, std::min(e, f), std::max(e, f)};
       if (!Immobile(pair)) found->push_back(pair);
     }

@@ -74,14 +74,20 @@ class CollisionCulling {
   void SweptBoxes();
   void TriangleNormals();
   static void CellNormals(const NodeRows& x, int top, int bottom, int cells, int first, NodeRows* normals);
-  void BoxPatch(int patch);
+  Box TriangleBox(int triangle) const;
+  Box EdgeBox(int edge) const;
+  /// A primitive of one patch inside another's box, and its own box.
+  struct Near {
+    int index;
+    Box box;
+  };
   NormalCone PatchCone(const ClothPatch& patch) const;
   void RegionBounds();
   void SelfPairs(int region);
   void CrossPairs(int a, int b);
   bool Separated(int p, int q) const;
   void Candidates();
-  void AddPairs(int p, int q, std::vector<int>* near, std::vector<PrimitivePair>* found) const;
+  void AddPairs(int p, int q, std::vector<Near>* near, std::vector<PrimitivePair>* found) const;
   bool Immobile(const PrimitivePair& pair) const;
   Point Start(int node) const { return (*start_).row(node).transpose().matrix(); }
   Point End(int node) const { return (*end_).row(node).transpose().matrix(); }
@@ -99,13 +105,10 @@ class CollisionCulling {
   double h_ = 0;
   int threads_ = 1;
 
-  std::vector<Box> node_box_;                 ///< per node, its swept box grown by h/2
-  std::vector<Box> triangle_box_, edge_box_;  ///< of the patches a pair named (BoxPatch)
-  std::vector<char> boxed_;                   ///< per patch: whether a pair names it
-  std::vector<int> named_;                    ///< the patches pairs name, each once
-  std::vector<Box> region_box_;               ///< per region, its nodes' swept boxes together
-  std::vector<NormalCone> region_cone_;       ///< per region
-  Eigen::VectorXd moved_by_;                  ///< m, per node, |x1 - x0|
+  std::vector<Box> node_box_;            ///< per node, its swept box grown by h/2
+  std::vector<Box> region_box_;          ///< per region, its nodes' swept boxes together
+  std::vector<NormalCone> region_cone_;  ///< per region
+  Eigen::VectorXd moved_by_;             ///< m, per node, |x1 - x0|
   // Per triangle, in ClothMesh order: its normal (unnormalised, m^2) at the step's start and
   // end, the longer of the two, and curl >= |du x dv|, which bounds how far the normal strays
   // between them (collision_culling.cpp).
@@ -113,7 +116,8 @@ class CollisionCulling {
   Eigen::ArrayXd normal_longest_, normal_curl_;
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
   std::vector<std::vector<PrimitivePair>> pair_candidates_;  ///< per patch pair, its candidates
-  std::vector<std::vector<int>> near_;  ///< per participant, scratch: one patch's primitives in another's box
+  std::vector<std::vector<Near>>
+      near_;  ///< per participant, scratch: one patch's primitives in another's box
   std::vector<PrimitivePair> candidates_;
 };
 
