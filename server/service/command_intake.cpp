@@ -148,11 +148,7 @@ void CommandIntake::Answer(ack_t ack, int64_t recoveries_before) {
                  "applied; then the guard caught the flag at " + event.Describe();
     spdlog::warn("{} from {} #{}: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
   }
-  ack.utime = UnixMicros();
-  if (presence_ != nullptr) {
-    ack.server_id = presence_->id();
-    ack.other_servers = presence_->others();
-  }
+  Stamp(&ack);
   const auto last = last_ack_.find(ack.client_id);
   const bool newer_came = last != last_ack_.end() && last->second.sequence != ack.sequence;
   if (!ack.client_id.empty() && !newer_came) last_ack_[ack.client_id] = ack;
@@ -246,12 +242,17 @@ void CommandIntake::Refuse(const std::string& channel, const std::string& client
   ack.reason = verdict.reason;
   ack.step = session_.simulation().state().step;
   spdlog::warn("{} from {} #{}: refused: {}", ack.channel, ack.client_id, ack.sequence, ack.reason);
-  ack.utime = UnixMicros();
-  if (presence_ != nullptr) {
-    ack.server_id = presence_->id();
-    ack.other_servers = presence_->others();
-  }
+  Stamp(&ack);
   bus_.Publish(channels_.ack, ack);
+}
+
+// The answer's time, and who answers: this server's id and how many others it hears.
+void CommandIntake::Stamp(ack_t* ack) const {
+  ack->utime = UnixMicros();
+  if (presence_ != nullptr) {
+    ack->server_id = presence_->id();
+    ack->other_servers = presence_->others();
+  }
 }
 
 void CommandIntake::Drop(const std::string& channel, const std::string& reason) {

@@ -96,6 +96,7 @@ class CommandIntake {
   void Refuse(const std::string& channel, const std::string& client_id, int64_t sequence,
               const CommandAuthenticator::Verdict& verdict);
   void Answer(ack_t ack, int64_t recoveries_before);
+  void Stamp(ack_t* ack) const;
 
   /// An accepted command whose answer waits for the flag to settle under it.
   struct Settling {

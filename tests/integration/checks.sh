@@ -31,6 +31,23 @@ found() {
 }
 contains() { found -F "$@"; }  # fixed text
 matches() { found -E "$@"; }   # extended regular expression
+# await_server FLAGCTL PREFIX: until a server on PREFIX answers status (at most 10 s).
+await_server() {
+  for _ in $(seq 50); do
+    "$1" --prefix "$2" --timeout 0.5 status >/dev/null 2>&1 && return 0
+    sleep 0.2
+  done
+  return 1
+}
+# await_bytes FILE BYTES: until FILE holds more than BYTES (at most 30 s): a recorder is taking
+# what the bus carries.
+await_bytes() {
+  for _ in $(seq 300); do
+    (($(stat -c %s "$1" 2>/dev/null || echo 0) > $2)) && return 0
+    sleep 0.1
+  done
+  return 1
+}
 # finish: the tally, and the exit code.
 finish() {
   echo "$passes passed, $failures failed"

@@ -68,10 +68,7 @@ else fail "flagd logs on stdout:" "$work/stdout"; fi
 echo "-- a live server"
 "$flagd" --prefix $prefix --log-level warn >"$work/flagd.log" 2>&1 &
 server=$!
-for _ in $(seq 50); do
-  "$flagctl" --prefix $prefix --timeout 0.5 status >/dev/null 2>&1 && break
-  sleep 0.2
-done
+await_server "$flagctl" $prefix || fail "no status from the server"
 # The tables come once a second; params, status and keyframe list ask for them with a question
 # (a tables-only REFRESH) and print the first that comes. That the server answers a question at
 # once, on its simulated clock, is ServerTest.AQuestionGetsTheTablesAndNoMoreThanTenTimesASecond;
@@ -97,10 +94,15 @@ expect 0 "the timeline" "$flagctl" --prefix $prefix keyframe list
 contains "paused at 0 s of 0 s, speed 1, loop off, 0 key(s)" "  is still paused, not gliding"
 
 echo "-- a camera size change mid-session, exported"
-"$flagctl" --prefix $prefix record -o "$work/resized.lcmlog" --duration 3 >"$work/record.out" 2>&1 &
+"$flagctl" --prefix $prefix record -o "$work/resized.lcmlog" >"$work/record.out" 2>&1 &
 recorder=$!
-sleep 1  # some frames at the first size before the change
+# A keyframe and frames at the first size (a 1280 x 720 frame is tens of KB), then the change,
+# then frames at the new size; the recorder stops on SIGINT.
+await_bytes "$work/resized.lcmlog" 2000000 || fail "the recording did not grow" "$work/record.out"
 expect 0 "camera size mid-session" "$flagctl" --prefix $prefix camera size 320 180
+await_bytes "$work/resized.lcmlog" $(($(stat -c %s "$work/resized.lcmlog") + 1000000)) ||
+  fail "the recording did not grow after the change" "$work/record.out"
+kill -INT "$recorder"
 wait "$recorder" || fail "the recording" "$work/record.out"
 if command -v ffprobe >/dev/null; then
   expect 0 "export of the whole session into one MP4" "$flagctl" --prefix $prefix export "$work/resized.lcmlog" -o "$work/resized.mp4"

@@ -43,10 +43,7 @@ echo "-- a server with a key"
 "$flagd" --prefix $prefix --key-file "$work/ops.key" --set cols=16 --set rows=12 --set frame_rate=0 \
   --log-level info >"$work/flagd.log" 2>&1 &
 server=$!
-for _ in $(seq 50); do
-  "$flagctl" --prefix $prefix --timeout 0.5 status >/dev/null 2>&1 && break
-  sleep 0.2
-done
+await_server "$flagctl" $prefix || fail "no status from the server"
 expect 0 "status says how commands are checked" "$flagctl" --prefix $prefix status
 contains "authentication:    HMAC-SHA-256, keys ops" "  HMAC-SHA-256 with the key's name"
 expect 3 "an unsigned command is refused" "$flagctl" --prefix $prefix wind 5 0 0
@@ -54,12 +51,16 @@ contains "rejected: unsigned: " "  with the reason"
 expect 3 "a command signed with another secret is refused" "$flagctl" --prefix $prefix --key-file "$work/forger.key" wind 5 0 0
 contains "rejected: bad MAC: " "  with the reason"
 
-"$flagctl" --prefix $prefix --key-file "$work/ops.key" record -o "$work/session.lcmlog" --duration 4 >"$work/record.out" 2>&1 &
+"$flagctl" --prefix $prefix --key-file "$work/ops.key" record -o "$work/session.lcmlog" >"$work/record.out" 2>&1 &
 recorder=$!
-sleep 1  # the recorder subscribes before the command it is to capture goes out
+# The recorder takes the bus before the commands it is to capture go out; it stops on SIGINT.
+await_bytes "$work/session.lcmlog" 100000 || fail "the recording did not grow" "$work/record.out"
 expect 0 "a signed command is accepted" "$flagctl" --prefix $prefix --key-file "$work/ops.key" wind 7 0 0
 contains "accepted at step" "  and applied"
 expect 0 "and the next one" "$flagctl" --prefix $prefix --key-file "$work/ops.key" wind 2 0 0
+await_bytes "$work/session.lcmlog" $(($(stat -c %s "$work/session.lcmlog") + 100000)) ||
+  fail "the recording did not grow after the commands" "$work/record.out"
+kill -INT "$recorder"
 wait "$recorder" || fail "the recorder" "$work/record.out"
 expect 0 "lcm-logplayer plays the recorded commands back" lcm-logplayer -e "${prefix}WIND" "$work/session.lcmlog"
 for _ in $(seq 20); do  # STATUS counts once a second
