@@ -2,7 +2,7 @@
 // (and calm and gale at 32 x 24), one simulation with self_collision off and one with it on,
 // stepped in the same run on one thread.
 //
-//   build/bench/collision_bench [--csv FILE] [--repetitions N] [--seconds S]
+//   build/bench/collision_bench [--csv FILE] [--repetitions N] [--seconds S] [--max-cols C]
 //
 // The run: both simulations from rest over S / scale seconds of simulated time (scale = cols / 32,
 // so 10, 5, 2.5 and 1.25 s by default: the big grids are slow), taking turns one STATE interval
@@ -51,6 +51,7 @@ struct Options {
   std::string csv;      ///< "" writes no CSV
   int repetitions = 5;  ///< timed repetitions per grid
   double seconds = 10;  ///< s of simulated time at 32 x 24; S / scale at larger grids
+  int max_cols = 256;   ///< grids wider than this are left out
 };
 
 /// A preset at 32 * scale x 24 * scale nodes.
@@ -157,8 +158,8 @@ void Measure(const Case& one, const Options& options, Table* table) {
   RunBoth(seconds, steps_per_state, sim::BuildClothMesh(params.cols, params.rows), &off, &on);
   const double run_off = off.cpu_seconds / off.steps, run_on = on.cpu_seconds / on.steps;
   const int timed_steps = std::max(kLeastTimedSteps, int(std::ceil(kTimedSeconds / run_off)));
-  const Timing timing = TimeInTurns(off.simulation->Snapshot(), on.simulation->Snapshot(),
-                                    timed_steps, options.repetitions);
+  const Timing timing =
+      TimeInTurns(off.simulation->Snapshot(), on.simulation->Snapshot(), timed_steps, options.repetitions);
   const double simulated = on.simulation->state().time, steps = double(on.steps);
   table->Add({one.preset, std::to_string(params.cols), std::to_string(params.rows),
               std::to_string(on.simulation->substeps()), Table::Number(simulated),
@@ -182,6 +183,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--seconds", options.seconds, "simulated seconds at 32 x 24 (divided by the scale above)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--max-cols", options.max_cols, "leave out grids wider than this (32 for 32 x 24 alone)")
+      ->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
   flagsim::lab::Table table({"preset", "cols", "rows", "substeps", "seconds", "ms_off", "ms_on", "ratio",
                              "run_ms_off", "run_ms_on", "run_ratio", "patch_pairs", "candidates", "contacts",
@@ -189,6 +192,8 @@ int main(int argc, char** argv) {
                             options.csv);
   const std::vector<flagsim::bench::Case> cases = {{"breeze", 1}, {"breeze", 2}, {"breeze", 4},
                                                    {"breeze", 8}, {"calm", 1},   {"gale", 1}};
-  for (const flagsim::bench::Case& one : cases) flagsim::bench::Measure(one, options, &table);
+  for (const flagsim::bench::Case& one : cases) {
+    if (32 * one.scale <= options.max_cols) flagsim::bench::Measure(one, options, &table);
+  }
   return 0;
 }

@@ -42,21 +42,36 @@ const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, 
   return candidates_;
 }
 
-CollisionCulling::Box CollisionCulling::Box::Around(const Point& lo, const Point& hi) {
-  Box box{lo.cast<float>(), hi.cast<float>()};
-  for (int k = 0; k < 3; ++k) {
-    if (double(box.lo[k]) > lo[k]) box.lo[k] = std::nextafter(box.lo[k], -INFINITY);
-    if (double(box.hi[k]) < hi[k]) box.hi[k] = std::nextafter(box.hi[k], INFINITY);
-  }
-  return box;
-}
+namespace {
 
+// Rounding to nearest puts float(y) within |y| 2^-24 of y (and within 2^-150 below 2^-126),
+// so lowering a bound by 2^-22 of itself and a little more before rounding keeps it below;
+// raising it likewise keeps it above. Under a micrometre at the flag's few metres.
+constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
+float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
+float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
+
+}  // namespace
+
+// Each node's box, grown by h/2 so that two boxes overlap when within h, and the ball about
+// its path: centre (x0 + x1) / 2, radius |x1 - x0| / 2.
 void CollisionCulling::SweptBoxes() {
-  const Point grow = Point::Constant(h_ / 2);  // two boxes overlap when within h
-  node_box_.resize(start_->rows());
-  for (int i = 0; i < int(start_->rows()); ++i) {
-    node_box_[i] = Box::Around(Start(i).cwiseMin(End(i)) - grow, Start(i).cwiseMax(End(i)) + grow);
-  }
+  const int nodes = int(start_->rows());
+  const double grow = h_ / 2;
+  node_box_.resize(nodes);
+  node_path_.resize(nodes);
+  ParallelFor((nodes + kNodeBlock - 1) / kNodeBlock, threads_, [&](int block) {
+    for (int i = block * kNodeBlock; i < std::min(nodes, (block + 1) * kNodeBlock); ++i) {
+      const Point x0 = Start(i), x1 = End(i);
+      Box& box = node_box_[i];
+      for (int k = 0; k < 3; ++k) {
+        box.lo[k] = FloatBelow(std::min(x0[k], x1[k]) - grow);
+        box.hi[k] = FloatAbove(std::max(x0[k], x1[k]) + grow);
+      }
+      box.lo[3] = box.hi[3] = 0;
+      node_path_[i] = {(x0 + x1) / 2, (x1 - x0).norm() / 2};
+    }
+  });
 }
 
 // The swept box of a triangle or an edge: its nodes' together. Made when a patch pair asks, as
@@ -239,7 +254,7 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
     for (const Near& node : *near) {
       if (mesh_.HasCorner(t, node.index) || !node.box.Overlaps(box)) continue;
       const PrimitivePair pair{false, node.index, t};
-      if (!Immobile(pair)) found->push_back(pair);
+      if (!Immobile(pair) && !Parted(pair)) found->push_back(pair);
     }
   }
   if (p > q) return;
@@ -255,7 +270,7 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
       const int e = edge.index;
       if ((p == q && f <= e) || mesh_.Adjacent(e, f) || !edge.box.Overlaps(box)) continue;
       const PrimitivePair pair{true, std::min(e, f), std::max(e, f)};
-      if (!Immobile(pair)) found->push_back(pair);
+      if (!Immobile(pair) && !Parted(pair)) found->push_back(pair);
     }
   }
 }
@@ -273,6 +288,41 @@ bool CollisionCulling::Immobile(const PrimitivePair& pair) const {
   const std::vector<double>& inverse_mass = *inverse_mass_;
   return inverse_mass[n[0]] == 0 && inverse_mass[n[1]] == 0 && inverse_mass[n[2]] == 0 &&
          inverse_mass[n[3]] == 0;
+}
+
+// Whether a plane parts the pair's two primitives with room for h over the whole step. Along
+// a unit axis a, a node stays within a . c +- r of its path's ball (c, r), and a primitive
+// within what its nodes' span; a gap over h between the two spans keeps them h apart at every
+// moment: no proximity and no contact to find. Boxes are loose for a tilted sheet, and
+// neighbours on one smooth sheet are parted this way by about half a cell. The axis: the line
+// between the primitives' centres; for two edges, also that line made square to the first
+// edge (two parallel diagonals of neighbouring cells are parted across it, not along it).
+bool CollisionCulling::Parted(const PrimitivePair& pair) const {
+  const std::array<int, 4> n = Nodes(pair);
+  const int split = pair.edges ? 2 : 1;
+  std::array<const NodePath*, 4> path;
+  for (int i = 0; i < 4; ++i) path[i] = &node_path_[n[i]];
+  const auto centre = [&path](int from, int to) {
+    Point sum = Point::Zero();
+    for (int i = from; i < to; ++i) sum += path[i]->centre;
+    return Point(sum / double(to - from));
+  };
+  // Unnormalised: the spans and the room are all scaled by |axis|.
+  const auto parted_along = [&](const Point& axis) {
+    const double length = axis.norm();
+    double first_most = -INFINITY, rest_least = INFINITY;
+    for (int i = 0; i < split; ++i)
+      first_most = std::max(first_most, axis.dot(path[i]->centre) + path[i]->radius * length);
+    for (int i = split; i < 4; ++i)
+      rest_least = std::min(rest_least, axis.dot(path[i]->centre) - path[i]->radius * length);
+    return rest_least - first_most > h_ * length;
+  };
+  const Point between = centre(split, 4) - centre(0, split);
+  if (parted_along(between)) return true;
+  if (!pair.edges) return false;
+  const Point along = path[1]->centre - path[0]->centre;  // the first edge at mid-step
+  const double length_squared = along.squaredNorm();
+  return length_squared > 0 && parted_along(between - along * (between.dot(along) / length_squared));
 }
 
 }  // namespace flagsim::sim

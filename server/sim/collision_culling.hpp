@@ -10,7 +10,8 @@
 //                                meet each other, boxes apart cannot meet; two patches apart
 //                                also need no plane across the line between their centres to
 //                                part them
-//               => candidates    in each patch pair, the primitives whose boxes overlap
+//               => candidates    in each patch pair, the primitives whose boxes overlap and
+//                                that no plane across the line between them parts
 //
 // Why cones and not a spatial hash: a hash pays for every node and cell at every step; the cones
 // cost a normal per triangle and let a smooth flag skip the rest. Threads share the normals
@@ -41,7 +42,8 @@ struct PrimitivePair {
 
 class CollisionCulling {
  public:
-  static constexpr int kPatchCells = 2;  ///< cells along a patch's side
+  static constexpr int kPatchCells = 2;    ///< cells along a patch's side
+  static constexpr int kNodeBlock = 1024;  ///< nodes a thread takes at a time
 
   CollisionCulling(int cols, int rows);
 
@@ -60,15 +62,20 @@ class CollisionCulling {
  private:
   /// An axis-aligned box in float, rounded outwards from the double extent it bounds, at half
   /// the memory: it holds that extent, so a test in float finds every pair the double one
-  /// would, and the few it adds are farther apart than h, which the exact tests reject.
+  /// would, and the few it adds are farther apart than h, which the exact tests reject. Four
+  /// lanes, x, y, z and one that never decides a test, so that each test is a few vector
+  /// instructions.
   struct Box {
-    Eigen::Vector3f lo, hi;
-    static Box Around(const Point& lo, const Point& hi);
-    static Box Empty() { return {Eigen::Vector3f::Constant(INFINITY), Eigen::Vector3f::Constant(-INFINITY)}; }
-    Box Joined(const Box& other) const { return {lo.cwiseMin(other.lo), hi.cwiseMax(other.hi)}; }
-    bool Overlaps(const Box& other) const {
-      return (lo.array() <= other.hi.array()).all() && (other.lo.array() <= hi.array()).all();
-    }
+    Eigen::Array4f lo, hi;
+    static Box Empty() { return {Eigen::Array4f::Constant(INFINITY), Eigen::Array4f::Constant(-INFINITY)}; }
+    Box Joined(const Box& other) const { return {lo.min(other.lo), hi.max(other.hi)}; }
+    /// Each lane of one box reaches the other's: other.hi - lo >= 0 and hi - other.lo >= 0.
+    bool Overlaps(const Box& other) const { return (other.hi - lo).min(hi - other.lo).minCoeff() >= 0; }
+  };
+  /// A node's straight path over the step, within the ball of `radius` about `centre`.
+  struct NodePath {
+    Point centre;
+    double radius = 0;
   };
 
   void SweptBoxes();
@@ -89,6 +96,7 @@ class CollisionCulling {
   void Candidates();
   void AddPairs(int p, int q, std::vector<Near>* near, std::vector<PrimitivePair>* found) const;
   bool Immobile(const PrimitivePair& pair) const;
+  bool Parted(const PrimitivePair& pair) const;
   Point Start(int node) const { return (*start_).row(node).transpose().matrix(); }
   Point End(int node) const { return (*end_).row(node).transpose().matrix(); }
   static Point Row(const NodeRows& rows, int i) { return rows.row(i).transpose().matrix(); }
@@ -106,6 +114,7 @@ class CollisionCulling {
   int threads_ = 1;
 
   std::vector<Box> node_box_;            ///< per node, its swept box grown by h/2
+  std::vector<NodePath> node_path_;      ///< per node
   std::vector<Box> region_box_;          ///< per region, its nodes' swept boxes together
   std::vector<NormalCone> region_cone_;  ///< per region
   Eigen::VectorXd moved_by_;             ///< m, per node, |x1 - x0|

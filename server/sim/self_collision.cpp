@@ -92,16 +92,16 @@ template <typename Real>
 void SelfCollision<Real>::Load(const ClothModel<Real>& model, const ClothState<Real>& start,
                                const ClothState<Real>& end) {
   const int n = model.num_nodes();
+  const auto column = [n](const std::vector<Real>& values) {
+    return Eigen::Map<const Eigen::Array<Real, Eigen::Dynamic, 1>>(values.data(), n).template cast<double>();
+  };
   start_.resize(n, 3);
   end_.resize(n, 3);
   velocity_.resize(n, 3);
-  inverse_mass_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    start_.row(i) << double(start.x[i]), double(start.y[i]), double(start.z[i]);
-    end_.row(i) << double(end.x[i]), double(end.y[i]), double(end.z[i]);
-    velocity_.row(i) << double(end.vx[i]), double(end.vy[i]), double(end.vz[i]);
-    inverse_mass_[i] = double(model.inverse_mass[i]);
-  }
+  start_ << column(start.x), column(start.y), column(start.z);
+  end_ << column(end.x), column(end.y), column(end.z);
+  velocity_ << column(end.vx), column(end.vy), column(end.vz);
+  inverse_mass_.assign(model.inverse_mass.begin(), model.inverse_mass.end());
   integrated_ = end_;
   integrated_velocity_ = velocity_;
 }

@@ -21,7 +21,7 @@ class CommandIntakeTest : public ::testing::Test {
   // answered once the flag has taken CommandIntake::kSettleSteps steps under them.
   CommandIntakeTest()
       : bus_("memq://"),
-        server_(bus_, channels_, Scene{}, ServerOptions{true, 0, {}}),
+        server_(bus_, channels_, Scene{}, ServerOptions{true, 0, {}, MonotonicSeconds, {}}),
         client_(bus_, channels_, 5.0) {
     client_.WhileWaiting([this] { server_.Tick(MonotonicSeconds()); });
   }

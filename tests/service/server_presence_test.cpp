@@ -74,7 +74,7 @@ TEST_F(ServerPresenceTest, AFloodOfForgedIdsIsBounded) {
 TEST(ServerIds, TheServerSaysWhoItIsAndWhomElseItHears) {
   Bus bus("memq://");
   Channels channels;
-  Server server(bus, channels, Scene{}, ServerOptions{true, 0.2, {}});
+  Server server(bus, channels, Scene{}, ServerOptions{true, 0.2, {}, MonotonicSeconds, {}});
   std::vector<state_t> states;
   std::vector<status_t> statuses;
   bus.Subscribe(channels.state, [&](const std::string&, const uint8_t* data, size_t size) {

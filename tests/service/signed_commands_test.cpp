@@ -27,7 +27,7 @@ class SignedCommandIntakeTest : public ::testing::Test {
     return key;
   }
   static ServerOptions WithKeys() {
-    ServerOptions options{true, 0, {}};
+    ServerOptions options{true, 0, {}, MonotonicSeconds, {}};
     options.command_keys = {Key("ops", 7)};
     return options;
   }

@@ -94,7 +94,7 @@ class GatewayTest : public ::testing::Test {
  protected:
   GatewayTest()
       : bus_("memq://"),
-        server_(bus_, channels_, SmallScene(), ServerOptions{true, 0, {}}),
+        server_(bus_, channels_, SmallScene(), ServerOptions{true, 0, {}, MonotonicSeconds, {}}),
         gateway_(bus_, channels_, Options()),
         client_(gateway_) {}
 
@@ -233,7 +233,7 @@ TEST(GatewayWithKeys, TheServerTakesWhatTheGatewaySigns) {
   key.secret.fill(3);
   Bus bus("memq://");
   Channels channels;
-  ServerOptions keyed{true, 0, {}};
+  ServerOptions keyed{true, 0, {}, MonotonicSeconds, {}};
   keyed.command_keys = {key};
   Server server(bus, channels, SmallScene(), keyed);
   GatewayOptions signing, plain;
