@@ -88,11 +88,7 @@ void ForTilesOfBox(int x0, int y0, int x1, int y1, int width, int height, int ti
 
 }  // namespace
 
-size_t Renderer::triangles_drawn() const {
-  size_t count = 0;
-  for (const Chunk& chunk : chunks_) count += chunk.setups.size();
-  return count;
-}
+size_t Renderer::triangles_drawn() const { return triangles_drawn_; }
 
 void Renderer::Render(const RenderScene& scene, const Camera& camera, const RenderOptions& options_in,
                       Framebuffer* framebuffer) {
@@ -108,13 +104,6 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   line_bins_.resize(size_t(tiles_x_) * tiles_y_);
   for (std::vector<uint32_t>& bin : line_bins_) bin.clear();
   VertexStage(scene, clip_from_world, options.mode, options.threads);
-  if (options.mode == ShadingMode::kWireframe) {
-    chunks_.clear();
-    LineStage(scene, camera.width, camera.height, options.tile_size);
-  } else {
-    lines_.clear();
-    PrimitiveStage(scene, options.mode, camera.width, camera.height, options.tile_size, options.threads);
-  }
   pattern_.Assign(scene.pattern);
   SkyRows(scene, camera.height, &sky_rows_);
   ShadeContext context;
@@ -122,7 +111,28 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   context.pattern = &pattern_;
   context.mode = options.mode;
   context.eye = eye_;
-  TileStage(context, options, framebuffer);
+  std::vector<ChunkWork> work;
+  if (options.mode == ShadingMode::kWireframe) {
+    LineStage(scene, camera.width, camera.height, options.tile_size);
+  } else {
+    lines_.clear();
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+      const int count = static_cast<int>(scene.meshes[m].triangles.size());
+      for (int first = 0; first < count; first += kChunk)
+        work.push_back({int(m), first, std::min(count, first + kChunk)});
+    }
+  }
+  // Batches of chunks; one pass with none for lines alone, or for an empty scene.
+  const size_t per_batch = size_t(std::max(1, options.batch_triangles / kChunk));
+  triangles_drawn_ = 0;
+  for (size_t first = 0;; first += per_batch) {
+    const size_t end = std::min(work.size(), first + per_batch);
+    const std::vector<ChunkWork> batch(work.begin() + first, work.begin() + end);
+    PrimitiveStage(scene, batch, options.mode, camera.width, camera.height, options.tile_size,
+                   options.threads);
+    TileStage(context, options, first == 0, end == work.size(), framebuffer);
+    if (end == work.size()) break;
+  }
 }
 
 // (world position, normal, uv) => (clip position, lighting or position/normal, uv)
@@ -164,18 +174,9 @@ void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip
   }
 }
 
-// Triangles in fixed chunks (the same chunks at any thread count), each binned to the tiles.
-void Renderer::PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height,
-                              int tile_size, int threads) {
-  struct Work {
-    int mesh, first, end;
-  };
-  std::vector<Work> work;
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    const int count = static_cast<int>(scene.meshes[m].triangles.size());
-    for (int first = 0; first < count; first += kChunk)
-      work.push_back({int(m), first, std::min(count, first + kChunk)});
-  }
+// The batch's chunks of triangles (the same chunks at any thread count), each binned to the tiles.
+void Renderer::PrimitiveStage(const RenderScene& scene, const std::vector<ChunkWork>& work, ShadingMode mode,
+                              int width, int height, int tile_size, int threads) {
   chunks_.resize(work.size());
   const int items = static_cast<int>(work.size());
   ParallelFor(items, threads, [&](int w) {
@@ -251,12 +252,18 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height, int ti
   }
 }
 
-void Renderer::TileStage(const ShadeContext& context, const RenderOptions& options,
-                         Framebuffer* framebuffer) {
+void Renderer::TileStage(const ShadeContext& context, const RenderOptions& options, bool first_pass,
+                         bool last_pass, Framebuffer* framebuffer) {
   const int tiles = tiles_x_ * tiles_y_, size = options.tile_size;
+  for (const Chunk& chunk : chunks_) triangles_drawn_ += chunk.setups.size();
+  const auto untouched = [this](int tile) {
+    return std::all_of(chunks_.begin(), chunks_.end(),
+                       [tile](const Chunk& chunk) { return chunk.bins[tile].empty(); });
+  };
   std::vector<TileBuffer> buffers;  // one per thread
   for (int k = 0; k < std::max(1, options.threads); ++k) buffers.emplace_back(size);
   ParallelForEachParticipant(tiles, options.threads, [&](int index, int participant) {
+    if (!first_pass && untouched(index)) return;
     TileRect rect;
     rect.x0 = (index % tiles_x_) * size;
     rect.y0 = (index / tiles_x_) * size;
@@ -264,11 +271,12 @@ void Renderer::TileStage(const ShadeContext& context, const RenderOptions& optio
     rect.y1 = std::min(rect.y0 + size, framebuffer->height);
     const TileTarget target = buffers[participant].Target(rect);
     ClearTile(sky_rows_.data(), target);
+    if (!first_pass) CopyIn(*framebuffer, target);
     for (const Chunk& chunk : chunks_) {
       for (const uint32_t i : chunk.bins[index]) RasterizeTriangle(chunk.setups[i], context, target);
     }
     for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
-    CopyOut(target, options.keep_depth, framebuffer);
+    CopyOut(target, options.keep_depth || !last_pass, framebuffer);
   });
 }
 

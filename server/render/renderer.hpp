@@ -9,6 +9,12 @@
 //   tiles            in parallel, each in a small buffer of its own that stays in cache: sky,
 //                    the tile's triangles chunk after chunk (tile_raster.hpp), then copied out
 //
+// A mesh of more than RenderOptions::batch_triangles is drawn in passes, a batch of chunks at a
+// time: primitives, then the tiles that the batch's triangles touch, each copied in as the last
+// pass left it (colour and depth), drawn on and copied out again. The setups of one batch are
+// held at a time (about 200 bytes a triangle), not the whole mesh's, and each tile still meets
+// its triangles in the same order, so the image is the same bit for bit.
+//
 // Every stage's output is in a fixed order whatever the thread count, and each tile is drawn
 // by one thread, so the image is the same bit for bit at any number of threads.
 #pragma once
@@ -29,8 +35,9 @@ namespace flagsim::render {
 struct RenderOptions {
   ShadingMode mode = ShadingMode::kGouraud;
   int threads = 1;
-  int tile_size = 64;       ///< px, square tiles (the stream's tiles too), 8 and up
-  bool keep_depth = false;  ///< also copy the depth buffer out (tiles keep it to themselves)
+  int tile_size = 64;             ///< px, square tiles (the stream's tiles too), 8 and up
+  bool keep_depth = false;        ///< also copy the depth buffer out (tiles keep it to themselves)
+  int batch_triangles = 1 << 15;  ///< triangles set up at once; a bigger mesh is drawn in passes
 };
 
 class Renderer {
@@ -45,10 +52,17 @@ class Renderer {
  private:
   void VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip_from_world, ShadingMode mode,
                    int threads);
-  void PrimitiveStage(const RenderScene& scene, ShadingMode mode, int width, int height, int tile_size,
-                      int threads);
+  /// One primitive-stage work item: a run of a mesh's triangles.
+  struct ChunkWork {
+    int mesh, first, end;
+  };
+  void PrimitiveStage(const RenderScene& scene, const std::vector<ChunkWork>& work, ShadingMode mode,
+                      int width, int height, int tile_size, int threads);
   void LineStage(const RenderScene& scene, int width, int height, int tile_size);
-  void TileStage(const ShadeContext& context, const RenderOptions& options, Framebuffer* framebuffer);
+  /// The tiles' pass over the chunks set up last: the first pass clears every tile to the sky,
+  /// a later one draws only on the tiles its triangles touch; all but the last keep the depth.
+  void TileStage(const ShadeContext& context, const RenderOptions& options, bool first_pass, bool last_pass,
+                 Framebuffer* framebuffer);
 
   /// One primitive-stage work item's triangles, in order, and for each tile those whose box
   /// touches it.
@@ -60,7 +74,8 @@ class Renderer {
 
   Eigen::Vector3f eye_;
   std::vector<std::vector<ClipVertex>> vertices_;  ///< per mesh, per vertex
-  std::vector<Chunk> chunks_;
+  std::vector<Chunk> chunks_;                      ///< the batch's
+  size_t triangles_drawn_ = 0;
   std::vector<LineSetup> lines_;
   RgbxTexture pattern_;             ///< the scene's, for the tiles
   std::vector<uint32_t> sky_rows_;  ///< the sky's colour on each row of the image

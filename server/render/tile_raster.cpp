@@ -333,6 +333,18 @@ void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer
   }
 }
 
+void CopyIn(const Framebuffer& framebuffer, const TileTarget& target) {
+  const TileRect& tile = target.rect;
+  for (int y = tile.y0; y < tile.y1; ++y) {
+    const uint8_t* rgb = &framebuffer.rgb[(size_t(y) * framebuffer.width + tile.x0) * 3];
+    uint32_t* rgbx = target.Rgbx(tile.x0, y);
+    for (int x = 0; x < tile.x1 - tile.x0; ++x)
+      rgbx[x] = PackRgbx(rgb[3 * x], rgb[3 * x + 1], rgb[3 * x + 2]);
+    std::memcpy(target.Depth(tile.x0, y), &framebuffer.depth[size_t(y) * framebuffer.width + tile.x0],
+                size_t(tile.x1 - tile.x0) * sizeof(float));
+  }
+}
+
 void SkyRows(const RenderScene& scene, int height, std::vector<uint32_t>* rows) {
   rows->resize(size_t(height));
   for (int y = 0; y < height; ++y) {

@@ -59,6 +59,8 @@ inline uint32_t PackRgbx(uint32_t r, uint32_t g, uint32_t b) { return r | g << 8
 
 /// The drawn tile into its place in `framebuffer`: colour as RGB, depth too if `keep_depth`.
 void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer);
+/// The tile as an earlier pass left it in `framebuffer` (CopyOut with its depth), to draw on.
+void CopyIn(const Framebuffer& framebuffer, const TileTarget& target);
 
 /// A pattern as RGBX words (PackRgbx), so that fetching a texel is one load.
 struct RgbxTexture {

@@ -49,6 +49,30 @@ TEST(Renderer, SameImageAtAnyThreadCount) {
   }
 }
 
+// A mesh drawn in passes of two chunks (a dozen passes, neighbouring rows of the flag sharing
+// tiles across them) gives the image and the depth of one pass, bit for bit.
+TEST(Renderer, PassesOfSmallBatchesDrawTheImageOfOnePass) {
+  const RenderScene scene = WavyFlagScene(64, 48);
+  Renderer renderer;
+  for (const ShadingMode mode : {ShadingMode::kFlat, ShadingMode::kGouraud, ShadingMode::kPhong}) {
+    Camera camera;
+    RenderOptions options;
+    options.mode = mode;
+    options.keep_depth = true;
+    Framebuffer whole, passes;
+    renderer.Render(scene, camera, options, &whole);
+    const size_t drawn = renderer.triangles_drawn();
+    for (const int threads : {1, 2}) {
+      options.threads = threads;
+      options.batch_triangles = 600;  // two chunks: a dozen passes
+      renderer.Render(scene, camera, options, &passes);
+      EXPECT_EQ(passes.rgb, whole.rgb) << int(mode) << " at " << threads << " threads";
+      EXPECT_EQ(passes.depth, whole.depth) << int(mode) << " at " << threads << " threads";
+      EXPECT_EQ(renderer.triangles_drawn(), drawn);
+    }
+  }
+}
+
 TEST(Renderer, AChangedPatternIsDrawnInTheNextFrame) {
   RenderScene scene = WavyFlagScene();
   Renderer renderer;
