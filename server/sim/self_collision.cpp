@@ -75,13 +75,18 @@ bool SelfCollision<Real>::Resolve(const ClothModel<Real>& model, const SimParams
   }
   bool changed = false;
   for (int i = 0; i < state->num_nodes(); ++i) {
-    if (!Moved(i) && (velocity_.row(i) == integrated_velocity_.row(i)).all()) continue;
-    state->x[i] = Real(end_(i, 0));
-    state->y[i] = Real(end_(i, 1));
-    state->z[i] = Real(end_(i, 2));
-    state->vx[i] = Real(velocity_(i, 0));
-    state->vy[i] = Real(velocity_(i, 1));
-    state->vz[i] = Real(velocity_(i, 2));
+    if (!changed_[i]) continue;
+    const std::array<Real, 6> corrected{Real(end_(i, 0)),      Real(end_(i, 1)),      Real(end_(i, 2)),
+                                        Real(velocity_(i, 0)), Real(velocity_(i, 1)), Real(velocity_(i, 2))};
+    const std::array<Real, 6> integrated{state->x[i],  state->y[i],  state->z[i],
+                                         state->vx[i], state->vy[i], state->vz[i]};
+    if (corrected == integrated) continue;  // impulses too small to change a Real
+    state->x[i] = corrected[0];
+    state->y[i] = corrected[1];
+    state->z[i] = corrected[2];
+    state->vx[i] = corrected[3];
+    state->vy[i] = corrected[4];
+    state->vz[i] = corrected[5];
     ++stats_.moved;
     changed = true;
   }
@@ -102,8 +107,7 @@ void SelfCollision<Real>::Load(const ClothModel<Real>& model, const ClothState<R
   end_ << column(end.x), column(end.y), column(end.z);
   velocity_ << column(end.vx), column(end.vy), column(end.vz);
   inverse_mass_.assign(model.inverse_mass.begin(), model.inverse_mass.end());
-  integrated_ = end_;
-  integrated_velocity_ = velocity_;
+  changed_.assign(n, false);
 }
 
 template <typename Real>
@@ -230,6 +234,7 @@ bool SelfCollision<Real>::Push(const std::array<int, 4>& nodes, const std::array
     const Point along = weights[i] * inverse_mass_[nodes[i]] * normal;
     end_.row(nodes[i]) += (dt_ * impulse * along).transpose().array();
     velocity_.row(nodes[i]) += (impulse_end * along).transpose().array();
+    changed_[nodes[i]] = true;
   }
   return true;
 }
@@ -242,13 +247,14 @@ void SelfCollision<Real>::Hold(int node) {
   inverse_mass_[node] = 0;
   end_.row(node) = start_.row(node);
   velocity_.row(node).setZero();
+  changed_[node] = true;
 }
 
 template <typename Real>
 bool SelfCollision<Real>::HoldThoseInObstacles() {
   bool outside = true;
   for (int i = 0; i < int(end_.rows()); ++i) {
-    if (!Moved(i)) continue;
+    if (!changed_[i]) continue;
     if (obstacles_.Inside(end_(i, 0), end_(i, 1), end_(i, 2))) {
       Hold(i);
       outside = false;

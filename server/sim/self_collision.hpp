@@ -121,8 +121,6 @@ class SelfCollision {
   Point Start(int node) const { return Row(start_, node); }
   Point End(int node) const { return Row(end_, node); }
   static Point Row(const NodeRows& rows, int i) { return rows.row(i).transpose().matrix(); }
-  Point Integrated(int node) const { return Row(integrated_, node); }
-  bool Moved(int node) const { return (end_.row(node) != integrated_.row(node)).any(); }
   Point Velocity(int node) const { return (End(node) - Start(node)) / dt_; }
   /// The nodes' straight paths over the step.
   Primitives PathsOf(const std::array<int, 4>& n) const {
@@ -135,10 +133,12 @@ class SelfCollision {
   double thickness_ = 0, dt_ = 0;
   int threads_ = 1;  ///< params.threads: the same result at any count
 
-  // Per step, per node: positions at the start and end (as corrected), the end as integrated,
-  // the end velocity (as corrected, and as integrated), inverse mass (0 when pinned or held).
-  NodeRows start_, end_, integrated_, velocity_, integrated_velocity_;
+  // Per step, per node: positions at the start and end (as corrected), the end velocity (as
+  // corrected), inverse mass (0 when pinned or held), and whether an impulse or the fail-safe
+  // has changed its end or end velocity (else they are as the integrator left them).
+  NodeRows start_, end_, velocity_;
   std::vector<double> inverse_mass_;
+  std::vector<char> changed_;
   std::vector<std::vector<Proximate>> proximate_blocks_;
   std::vector<Proximate> proximate_;
   std::vector<std::vector<Hit>> hit_blocks_;
