@@ -8,10 +8,16 @@
 namespace flagsim::sim {
 namespace {
 
-/// Elements 0, 2, 4, ... of the run of 2 count - 1 doubles at `data`.
-Eigen::Map<Eigen::ArrayXd, 0, Eigen::InnerStride<2>> EveryOther(double* data, int count) {
+/// Elements 0, 2, 4, ... of the run of 2 count - 1 values at `data`.
+template <typename Scalar>
+Eigen::Map<Eigen::Array<Scalar, Eigen::Dynamic, 1>, 0, Eigen::InnerStride<2>> EveryOther(Scalar* data,
+                                                                                         int count) {
   return {data, count};
 }
+
+/// A normal worked out in double and kept in float is off by at most 2^-24 of its length
+/// (rounding to nearest, each component); the cones allow twice that.
+constexpr double kNormalRounding = 0x1p-23;
 
 }  // namespace
 
@@ -106,7 +112,11 @@ void CollisionCulling::TriangleNormals() {
     EveryOther(normal_curl_.data() + first + 1, cells) =
         (moved(bottom) + moved(bottom + 1)) * (moved(bottom) + moved(top + 1));
   });
-  normal_longest_ = normal_start_.square().rowwise().sum().max(normal_end_.square().rowwise().sum()).sqrt();
+  const auto squared = [](const NormalRows& n) {
+    return n.col(0).cast<double>().square() + n.col(1).cast<double>().square() +
+           n.col(2).cast<double>().square();
+  };
+  normal_longest_ = squared(normal_start_).max(squared(normal_end_)).sqrt();
 }
 
 // The normals (b - a) x (c - a) of a row of cells' two triangles, as cloth_mesh.hpp lists them:
@@ -114,7 +124,7 @@ void CollisionCulling::TriangleNormals() {
 // (i + cols, i + cols + 1, i + 1) into first + 1, first + 3, ..., for i from `top` on and
 // i + cols from `bottom` on.
 void CollisionCulling::CellNormals(const NodeRows& x, int top, int bottom, int cells, int first,
-                                   NodeRows* normals) {
+                                   NormalRows* normals) {
   const auto run = [&x, cells](int k, int node) { return x.col(k).segment(node, cells); };
   for (int upper = 0; upper < 2; ++upper) {
     const int a = upper ? bottom : top, b = upper ? bottom + 1 : bottom, c = top + 1;
@@ -122,7 +132,8 @@ void CollisionCulling::CellNormals(const NodeRows& x, int top, int bottom, int c
     const auto v = [&](int k) { return run(k, c) - run(k, a); };
     for (int k = 0; k < 3; ++k) {
       const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-      EveryOther(normals->col(k).data() + first + upper, cells) = u(k1) * v(k2) - u(k2) * v(k1);
+      EveryOther(normals->col(k).data() + first + upper, cells) =
+          (u(k1) * v(k2) - u(k2) * v(k1)).template cast<float>();
     }
   }
 }
@@ -130,17 +141,22 @@ void CollisionCulling::CellNormals(const NodeRows& x, int top, int bottom, int c
 // The cone of a leaf patch: about its mean normal over the step, holding every triangle's
 // normal n(t) = (1 - t) n0 + t n1 - t (1 - t) du x dv at every moment t of the step, since
 // n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and |n(t)| <= max(|n0|, |n1|) + curl / 4. The
-// least of n(t) . d / |n(t)| over the triangles is the cone's cosine.
+// least of n(t) . d / |n(t)| over the triangles is the cone's cosine. With n0 and n1 kept in
+// float, each bound gives up their rounding too (kNormalRounding of the longer).
 NormalCone CollisionCulling::PatchCone(const ClothPatch& patch) const {
   Point sum = Point::Zero();
-  for (int t : patch.triangles) sum += Row(normal_start_, t) + Row(normal_end_, t);
+  const auto normal = [](const NormalRows& rows, int t) {
+    return Point(rows.row(t).transpose().cast<double>().matrix());
+  };
+  for (int t : patch.triangles) sum += normal(normal_start_, t) + normal(normal_end_, t);
   const double length = sum.norm();
   if (length == 0) return {Point::UnitZ()};
   const Point axis = sum / length;
   double least = 1;
   for (int t : patch.triangles) {
-    const double curl = normal_curl_[t] / 4;
-    const double along = std::min(Row(normal_start_, t).dot(axis), Row(normal_end_, t).dot(axis)) - curl;
+    const double curl = normal_curl_[t] / 4 + kNormalRounding * normal_longest_[t];
+    const double along =
+        std::min(normal(normal_start_, t).dot(axis), normal(normal_end_, t).dot(axis)) - curl;
     least = std::min(least, along <= 0 ? -1.0 : along / (normal_longest_[t] + curl));
   }
   if (least <= 0) return {axis};

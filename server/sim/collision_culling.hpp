@@ -30,9 +30,11 @@
 
 namespace flagsim::sim {
 
-/// Positions, one row per node (or normals, one per triangle): x, y, z in columns, so that each
-/// coordinate is contiguous.
+/// Positions, one row per node: x, y, z in columns, so that each coordinate is contiguous.
 using NodeRows = Eigen::Array<double, Eigen::Dynamic, 3>;
+/// Triangle normals, one row per triangle, kept in float (collision_culling.cpp says how the
+/// cones allow for it).
+using NormalRows = Eigen::Array<float, Eigen::Dynamic, 3>;
 
 /// A pair of primitives that may meet: a node and a triangle, or two edges (ClothMesh indices).
 struct PrimitivePair {
@@ -80,7 +82,7 @@ class CollisionCulling {
 
   void SweptBoxes();
   void TriangleNormals();
-  static void CellNormals(const NodeRows& x, int top, int bottom, int cells, int first, NodeRows* normals);
+  static void CellNormals(const NodeRows& x, int top, int bottom, int cells, int first, NormalRows* normals);
   Box TriangleBox(int triangle) const;
   Box EdgeBox(int edge) const;
   /// A primitive of one patch inside another's box, and its own box.
@@ -121,7 +123,7 @@ class CollisionCulling {
   // Per triangle, in ClothMesh order: its normal (unnormalised, m^2) at the step's start and
   // end, the longer of the two, and curl >= |du x dv|, which bounds how far the normal strays
   // between them (collision_culling.cpp).
-  NodeRows normal_start_, normal_end_;
+  NormalRows normal_start_, normal_end_;
   Eigen::ArrayXd normal_longest_, normal_curl_;
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
   std::vector<std::vector<PrimitivePair>> pair_candidates_;  ///< per patch pair, its candidates

@@ -108,6 +108,7 @@ void SelfCollision<Real>::Load(const ClothModel<Real>& model, const ClothState<R
   velocity_ << column(end.vx), column(end.vy), column(end.vz);
   inverse_mass_.assign(model.inverse_mass.begin(), model.inverse_mass.end());
   changed_.assign(n, false);
+  moved_.assign(n, false);
 }
 
 template <typename Real>
@@ -231,10 +232,13 @@ bool SelfCollision<Real>::Push(const std::array<int, 4>& nodes, const std::array
   const double impulse = (speed - relative) / resistance;
   const double impulse_end = std::max(0.0, speed - relative_end) / resistance;
   for (int i = 0; i < 4; ++i) {
-    const Point along = weights[i] * inverse_mass_[nodes[i]] * normal;
-    end_.row(nodes[i]) += (dt_ * impulse * along).transpose().array();
-    velocity_.row(nodes[i]) += (impulse_end * along).transpose().array();
-    changed_[nodes[i]] = true;
+    const int n = nodes[i];
+    const Point along = weights[i] * inverse_mass_[n] * normal;
+    const Eigen::Array<double, 1, 3> before = end_.row(n);
+    end_.row(n) += (dt_ * impulse * along).transpose().array();
+    velocity_.row(n) += (impulse_end * along).transpose().array();
+    moved_[n] = moved_[n] || (end_.row(n) != before).any();
+    changed_[n] = true;
   }
   return true;
 }
@@ -245,6 +249,7 @@ void SelfCollision<Real>::Hold(int node) {
   if (inverse_mass_[node] == 0 && End(node) == Start(node) && Row(velocity_, node).isZero()) return;
   if (inverse_mass_[node] != 0) ++stats_.held;
   inverse_mass_[node] = 0;
+  moved_[node] = moved_[node] || (end_.row(node) != start_.row(node)).any();
   end_.row(node) = start_.row(node);
   velocity_.row(node).setZero();
   changed_[node] = true;
@@ -254,7 +259,7 @@ template <typename Real>
 bool SelfCollision<Real>::HoldThoseInObstacles() {
   bool outside = true;
   for (int i = 0; i < int(end_.rows()); ++i) {
-    if (!changed_[i]) continue;
+    if (!moved_[i]) continue;
     if (obstacles_.Inside(end_(i, 0), end_(i, 1), end_(i, 2))) {
       Hold(i);
       outside = false;

@@ -134,11 +134,13 @@ class SelfCollision {
   int threads_ = 1;  ///< params.threads: the same result at any count
 
   // Per step, per node: positions at the start and end (as corrected), the end velocity (as
-  // corrected), inverse mass (0 when pinned or held), and whether an impulse or the fail-safe
-  // has changed its end or end velocity (else they are as the integrator left them).
+  // corrected), inverse mass (0 when pinned or held); whether an impulse or the fail-safe has
+  // touched its end or end velocity (else they are as the integrator left them), and whether
+  // its end moved (only then can it have entered an obstacle: the pinned hoist nodes lie on
+  // the pole's surface, and a touch that moves nothing must not call them inside).
   NodeRows start_, end_, velocity_;
   std::vector<double> inverse_mass_;
-  std::vector<char> changed_;
+  std::vector<char> changed_, moved_;
   std::vector<std::vector<Proximate>> proximate_blocks_;
   std::vector<Proximate> proximate_;
   std::vector<std::vector<Hit>> hit_blocks_;
