@@ -1,6 +1,7 @@
 #include "server/sim/collision_culling.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "server/parallel/worker_pool.hpp"
@@ -18,6 +19,13 @@ Eigen::Map<Eigen::Array<Scalar, Eigen::Dynamic, 1>, 0, Eigen::InnerStride<2>> Ev
 /// A normal worked out in double and kept in float is off by at most 2^-24 of its length
 /// (rounding to nearest, each component); the cones allow twice that.
 constexpr double kNormalRounding = 0x1p-23;
+
+// Rounding to nearest puts float(y) within |y| 2^-24 of y (and within 2^-150 below 2^-126),
+// so lowering a bound by 2^-22 of itself and a little more before rounding keeps it below;
+// raising it likewise keeps it above. Under a micrometre at the flag's few metres.
+constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
+float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
+float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
 
 }  // namespace
 
@@ -47,17 +55,6 @@ const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, 
   Candidates();
   return candidates_;
 }
-
-namespace {
-
-// Rounding to nearest puts float(y) within |y| 2^-24 of y (and within 2^-150 below 2^-126),
-// so lowering a bound by 2^-22 of itself and a little more before rounding keeps it below;
-// raising it likewise keeps it above. Under a micrometre at the flag's few metres.
-constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
-float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
-float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
-
-}  // namespace
 
 // Each node's box, grown by h/2 so that two boxes overlap when within h, and the ball about
 // its path: centre (x0 + x1) / 2, radius |x1 - x0| / 2.
