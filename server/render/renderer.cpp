@@ -206,6 +206,7 @@ void Renderer::PrimitiveStage(const RenderScene& scene, const std::vector<ChunkW
     }
     BinChunk(width, height, tile_size, &chunks_[w]);
   });
+  for (const Chunk& chunk : chunks_) triangles_drawn_ += chunk.setups.size();
 }
 
 void Renderer::BinChunk(int width, int height, int tile_size, Chunk* chunk) const {
@@ -255,7 +256,6 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height, int ti
 void Renderer::TileStage(const ShadeContext& context, const RenderOptions& options, bool first_pass,
                          bool last_pass, Framebuffer* framebuffer) {
   const int tiles = tiles_x_ * tiles_y_, size = options.tile_size;
-  for (const Chunk& chunk : chunks_) triangles_drawn_ += chunk.setups.size();
   const auto untouched = [this](int tile) {
     return std::all_of(chunks_.begin(), chunks_.end(),
                        [tile](const Chunk& chunk) { return chunk.bins[tile].empty(); });

@@ -56,13 +56,14 @@ const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, 
   return candidates_;
 }
 
-// Each node's box, grown by h/2 so that two boxes overlap when within h, and the ball about
-// its path: centre (x0 + x1) / 2, radius |x1 - x0| / 2.
+// Each node's box, grown by h/2 so that two boxes overlap when within h, how far it moved,
+// |x1 - x0|, and the ball about its path: centre (x0 + x1) / 2, radius |x1 - x0| / 2.
 void CollisionCulling::SweptBoxes() {
   const int nodes = int(start_->rows());
   const double grow = h_ / 2;
   node_box_.resize(nodes);
   node_path_.resize(nodes);
+  moved_by_.resize(nodes);
   ParallelFor((nodes + kNodeBlock - 1) / kNodeBlock, threads_, [&](int block) {
     for (int i = block * kNodeBlock; i < std::min(nodes, (block + 1) * kNodeBlock); ++i) {
       const Point x0 = Start(i), x1 = End(i);
@@ -72,7 +73,8 @@ void CollisionCulling::SweptBoxes() {
         box.hi[k] = FloatAbove(std::max(x0[k], x1[k]) + grow);
       }
       box.lo[3] = box.hi[3] = 0;
-      node_path_[i] = {(x0 + x1) / 2, (x1 - x0).norm() / 2};
+      moved_by_[i] = (x1 - x0).norm();
+      node_path_[i] = {(x0 + x1) / 2, moved_by_[i] / 2};
     }
   });
 }
@@ -95,7 +97,6 @@ CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
 // each coordinate of a row a contiguous run: the arithmetic is vectorised.
 void CollisionCulling::TriangleNormals() {
   const int cells = cols_ - 1, rows = int(start_->rows()) / cols_, triangles = 2 * cells * (rows - 1);
-  moved_by_ = (*end_ - *start_).matrix().rowwise().norm();
   normal_start_.resize(triangles, 3);
   normal_end_.resize(triangles, 3);
   normal_curl_.resize(triangles);

@@ -101,7 +101,6 @@ class CollisionCulling {
   bool Parted(const PrimitivePair& pair) const;
   Point Start(int node) const { return (*start_).row(node).transpose().matrix(); }
   Point End(int node) const { return (*end_).row(node).transpose().matrix(); }
-  static Point Row(const NodeRows& rows, int i) { return rows.row(i).transpose().matrix(); }
 
   int cols_ = 0;
   ClothMesh mesh_;
