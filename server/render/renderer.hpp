@@ -72,7 +72,7 @@ class Renderer {
   };
   void BinChunk(int width, int height, int tile_size, Chunk* chunk) const;
 
-  Eigen::Vector3f eye_;
+  Eigen::Vector3f eye_ = Eigen::Vector3f::Zero();
   std::vector<std::vector<ClipVertex>> vertices_;  ///< per mesh, per vertex
   std::vector<Chunk> chunks_;                      ///< the batch's
   size_t triangles_drawn_ = 0;

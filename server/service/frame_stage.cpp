@@ -8,13 +8,18 @@ namespace flagsim {
 
 FrameStage::FrameStage(Sink sink) : sink_(std::move(sink)), thread_([this] { Run(); }) {}
 
-FrameStage::~FrameStage() {
+FrameStage::~FrameStage() { Stop(); }
+
+void FrameStage::Stop() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
   }
   wake_.notify_one();
+  if (!thread_.joinable()) return;
   thread_.join();
+  painter_ = FramePainter();
+  tiles_ = TileStream();
 }
 
 bool FrameStage::Busy() const {

@@ -37,7 +37,7 @@ class FrameStage {
   using Sink = std::function<void(const EncodedFrame&)>;
 
   explicit FrameStage(Sink sink);
-  ~FrameStage();  ///< finishes the frame in hand, then stops
+  ~FrameStage();  ///< Stop()
   FrameStage(const FrameStage&) = delete;
   FrameStage& operator=(const FrameStage&) = delete;
 
@@ -50,6 +50,11 @@ class FrameStage {
 
   /// Waits until the frame in hand, if any, has gone to the sink.
   void Drain();
+
+  /// Finishes the frame in hand, stops the stage's thread and lets go of what drawing and
+  /// encoding hold (the renderer's buffers, the tiles' hashes): for a server at its end, so that
+  /// its last checkpoint is not built beside them. No Submit after it.
+  void Stop();
 
   /// The counts and timings since the last call.
   FrameStageStats TakeStats();

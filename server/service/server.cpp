@@ -43,9 +43,9 @@ void Server::Run(const std::atomic<bool>& stop) {
     bus_.Handle(static_cast<int>(std::ceil(wait * 1000)));
   }
   intake_.FlushPending();
+  frames_.Stop();  // the last frame out, and the drawing's memory freed before the checkpoint
   journal_.End(session_, UnixMicros());
   if (inputs_) inputs_->Close();
-  frames_.Drain();
   PublishState();  // the last word: where the flag stopped
   PublishStatus(options_.clock());
 }
