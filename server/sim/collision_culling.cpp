@@ -24,8 +24,14 @@ constexpr double kNormalRounding = 0x1p-23;
 // so lowering a bound by 2^-22 of itself and a little more before rounding keeps it below;
 // raising it likewise keeps it above. Under a micrometre at the flag's few metres.
 constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
-float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
-float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
+template <typename Values>
+auto FloatBelow(const Values& y) {
+  return (y - (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
+}
+template <typename Values>
+auto FloatAbove(const Values& y) {
+  return (y + (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
+}
 
 }  // namespace
 
@@ -41,14 +47,14 @@ CollisionCulling::CollisionCulling(int cols, int rows)
 
 const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, const NodeRows& end,
                                                          const std::vector<double>& inverse_mass, double h,
-                                                         int threads) {
+                                                         int threads, bool start_is_last_end) {
   start_ = &start;
   end_ = &end;
   inverse_mass_ = &inverse_mass;
   h_ = h;
   threads_ = threads;
   SweptBoxes();
-  TriangleNormals();
+  TriangleNormals(start_is_last_end);
   RegionBounds();
   patch_pairs_.clear();
   SelfPairs(int(patches_.regions.size()) - 1);
@@ -57,7 +63,9 @@ const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, 
 }
 
 // Each node's box, grown by h/2 so that two boxes overlap when within h, how far it moved,
-// |x1 - x0|, and the ball about its path: centre (x0 + x1) / 2, radius |x1 - x0| / 2.
+// |x1 - x0|, and the ball about its path: centre (x0 + x1) / 2, radius |x1 - x0| / 2. A block
+// of nodes at a time, each coordinate as a contiguous run (vectorised), then node by node into
+// the boxes and balls.
 void CollisionCulling::SweptBoxes() {
   const int nodes = int(start_->rows());
   const double grow = h_ / 2;
@@ -65,16 +73,20 @@ void CollisionCulling::SweptBoxes() {
   node_path_.resize(nodes);
   moved_by_.resize(nodes);
   ParallelFor((nodes + kNodeBlock - 1) / kNodeBlock, threads_, [&](int block) {
-    for (int i = block * kNodeBlock; i < std::min(nodes, (block + 1) * kNodeBlock); ++i) {
-      const Point x0 = Start(i), x1 = End(i);
-      Box& box = node_box_[i];
-      for (int k = 0; k < 3; ++k) {
-        box.lo[k] = FloatBelow(std::min(x0[k], x1[k]) - grow);
-        box.hi[k] = FloatAbove(std::max(x0[k], x1[k]) + grow);
-      }
-      box.lo[3] = box.hi[3] = 0;
-      moved_by_[i] = (x1 - x0).norm();
-      node_path_[i] = {(x0 + x1) / 2, moved_by_[i] / 2};
+    const int first = block * kNodeBlock, count = std::min(nodes - first, kNodeBlock);
+    const auto x0 = start_->middleRows(first, count), x1 = end_->middleRows(first, count);
+    const auto d = x1 - x0;
+    moved_by_.segment(first, count) = (d.col(0).square() + d.col(1).square() + d.col(2).square()).sqrt();
+    Eigen::Array<float, kNodeBlock, 3> lo, hi;
+    Eigen::Array<double, kNodeBlock, 3> centre;
+    for (int k = 0; k < 3; ++k) {
+      lo.col(k).head(count) = FloatBelow(x0.col(k).min(x1.col(k)) - grow);
+      hi.col(k).head(count) = FloatAbove(x0.col(k).max(x1.col(k)) + grow);
+      centre.col(k).head(count) = (x0.col(k) + x1.col(k)) / 2;
+    }
+    for (int i = 0; i < count; ++i) {
+      node_box_[first + i] = {{lo(i, 0), lo(i, 1), lo(i, 2), 0.0f}, {hi(i, 0), hi(i, 1), hi(i, 2), 0.0f}};
+      node_path_[first + i] = {centre.row(i).transpose().matrix(), moved_by_[first + i] / 2};
     }
   });
 }
@@ -94,16 +106,20 @@ CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
 // Every triangle's normal (unnormalised) at the step's start and end, the longer, and a bound
 // on how far the normal strays between them: |du x dv| <= |du| |dv|, and an edge's change
 // du = d_b - d_a is at most |d_a| + |d_b| for the nodes' displacements d. Row by row of cells,
-// each coordinate of a row a contiguous run: the arithmetic is vectorised.
-void CollisionCulling::TriangleNormals() {
+// each coordinate of a row a contiguous run: the arithmetic is vectorised. Where the step starts
+// exactly where the last one ended (one pass after another, no contact between), the start
+// normals are the last end normals.
+void CollisionCulling::TriangleNormals(bool start_is_last_end) {
   const int cells = cols_ - 1, rows = int(start_->rows()) / cols_, triangles = 2 * cells * (rows - 1);
+  const bool reuse = start_is_last_end && normal_end_.rows() == triangles;
+  if (reuse) normal_start_.swap(normal_end_);
   normal_start_.resize(triangles, 3);
   normal_end_.resize(triangles, 3);
   normal_curl_.resize(triangles);
   const auto moved = [&](int node) { return moved_by_.array().segment(node, cells); };
   ParallelFor(rows - 1, threads_, [&](int r) {
     const int top = r * cols_, bottom = top + cols_, first = 2 * r * cells;
-    CellNormals(*start_, top, bottom, cells, first, &normal_start_);
+    if (!reuse) CellNormals(*start_, top, bottom, cells, first, &normal_start_);
     CellNormals(*end_, top, bottom, cells, first, &normal_end_);
     EveryOther(normal_curl_.data() + first, cells) =
         (moved(top) + moved(bottom)) * (moved(top) + moved(top + 1));

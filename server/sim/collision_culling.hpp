@@ -52,8 +52,11 @@ class CollisionCulling {
   /// The pairs that may come within `h` over the step from `start` to `end`, but none whose
   /// four nodes all have inverse mass 0 (pinned or held), in an order that depends on the
   /// positions alone. They stay in candidates() until the next Find.
+  /// `start_is_last_end`: `start` holds exactly the positions the last Find was given as `end`,
+  /// so their triangle normals are taken over rather than worked out again.
   const std::vector<PrimitivePair>& Find(const NodeRows& start, const NodeRows& end,
-                                         const std::vector<double>& inverse_mass, double h, int threads);
+                                         const std::vector<double>& inverse_mass, double h, int threads,
+                                         bool start_is_last_end = false);
 
   const std::vector<PrimitivePair>& candidates() const { return candidates_; }
   /// The nodes of a pair: (node, triangle's a, b, c), or (edge's two, other edge's two).
@@ -81,7 +84,7 @@ class CollisionCulling {
   };
 
   void SweptBoxes();
-  void TriangleNormals();
+  void TriangleNormals(bool start_is_last_end);
   static void CellNormals(const NodeRows& x, int top, int bottom, int cells, int first, NormalRows* normals);
   Box TriangleBox(int triangle) const;
   Box EdgeBox(int edge) const;

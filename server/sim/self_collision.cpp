@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <utility>
 
@@ -58,7 +59,7 @@ bool SelfCollision<Real>::Resolve(const ClothModel<Real>& model, const SimParams
   obstacles_ = Obstacles::Of(params);
   Load(model, start, *state);
   for (int round = 0;; ++round) {
-    culling_.Find(start_, end_, inverse_mass_, thickness_, threads_);
+    culling_.Find(start_, end_, inverse_mass_, thickness_, threads_, round == 0 && start_is_culled_end_);
     if (round == 0) {
       stats_.patch_pairs = culling_.patch_pairs();
       stats_.candidates = int(candidates().size());
@@ -100,10 +101,16 @@ void SelfCollision<Real>::Load(const ClothModel<Real>& model, const ClothState<R
   const auto column = [n](const std::vector<Real>& values) {
     return Eigen::Map<const Eigen::Array<Real, Eigen::Dynamic, 1>>(values.data(), n).template cast<double>();
   };
+  const bool unchanged_since_culled =
+      end_.rows() == n && std::memchr(changed_.data(), true, changed_.size()) == nullptr;
   start_.resize(n, 3);
   end_.resize(n, 3);
   velocity_.resize(n, 3);
   start_ << column(start.x), column(start.y), column(start.z);
+  // The culling's end normals are this interval's start normals when the last interval's end,
+  // untouched by any impulse since it was culled, is where this one starts, bit for bit.
+  start_is_culled_end_ =
+      unchanged_since_culled && std::memcmp(start_.data(), end_.data(), sizeof(double) * 3 * n) == 0;
   end_ << column(end.x), column(end.y), column(end.z);
   velocity_ << column(end.vx), column(end.vy), column(end.vz);
   inverse_mass_.assign(model.inverse_mass.begin(), model.inverse_mass.end());

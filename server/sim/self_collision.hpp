@@ -141,6 +141,7 @@ class SelfCollision {
   NodeRows start_, end_, velocity_;
   std::vector<double> inverse_mass_;
   std::vector<char> changed_, moved_;
+  bool start_is_culled_end_ = false;  ///< start_ is the end_ the culling last saw (Load)
   std::vector<std::vector<Proximate>> proximate_blocks_;
   std::vector<Proximate> proximate_;
   std::vector<std::vector<Hit>> hit_blocks_;

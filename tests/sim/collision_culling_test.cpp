@@ -116,5 +116,29 @@ TEST(CollisionCulling, TheSameCandidatesInTheSameOrderAtAnyThreadCount) {
   EXPECT_FALSE(by_one.empty());
 }
 
+// A step that starts where the last one ended takes over its end normals: the candidates are
+// those of a culling that works every normal out afresh. The last step unfolds the sheet from
+// flat, so normals kept from its start instead would widen the cones and add candidates.
+TEST(CollisionCulling, AStepThatStartsWhereTheLastEndedFindsWhatAFreshStartFinds) {
+  std::vector<double> inverse_mass(kCols * kRows, 1.0);
+  std::mt19937 random(9);
+  NodeRows flat, start, end;
+  FoldedSheet(&random, &start, &end);
+  flat = start;
+  for (int r = 0; r < kRows; ++r) {
+    for (int c = 0; c < kCols; ++c) flat.row(r * kCols + c) << c * kSpacing, r * kSpacing, 0;
+  }
+  CollisionCulling carried(kCols, kRows), fresh(kCols, kRows);
+  carried.Find(flat, start, inverse_mass, kH, 1);
+  const std::vector<PrimitivePair>& by_carried = carried.Find(start, end, inverse_mass, kH, 1, true);
+  const std::vector<PrimitivePair>& by_fresh = fresh.Find(start, end, inverse_mass, kH, 1);
+  ASSERT_EQ(by_carried.size(), by_fresh.size());
+  for (size_t i = 0; i < by_fresh.size(); ++i) {
+    EXPECT_EQ(std::tie(by_carried[i].edges, by_carried[i].a, by_carried[i].b),
+              std::tie(by_fresh[i].edges, by_fresh[i].a, by_fresh[i].b));
+  }
+  EXPECT_FALSE(by_fresh.empty());
+}
+
 }  // namespace
 }  // namespace flagsim::sim
