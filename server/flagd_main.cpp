@@ -20,6 +20,7 @@
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
 #include "messages/command_key.hpp"
+#include "server/parallel/worker_pool.hpp"
 #include "server/render_command.hpp"
 #include "server/replay_command.hpp"
 #include "server/scene/parameter_table.hpp"
@@ -182,6 +183,9 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(
       std::make_shared<spdlog::logger>("", std::make_shared<spdlog::sinks::stderr_color_sink_mt>()));
   spdlog::set_level(spdlog::level::from_str(options.log_level));
+  // Beside a busy neighbour, loops shared among more threads than the free cores run slower than
+  // on one thread: share them among the free cores only.
+  flagsim::WorkerPool::Shared().ShareFreeCoresOnly(true);
   if (replay->parsed()) {
     options.replay.prefix = options.prefix;
     return flagsim::RunReplay(options.replay_log, options.replay);

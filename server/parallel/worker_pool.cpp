@@ -79,6 +79,12 @@ WorkerPool::~WorkerPool() {
   for (std::thread& worker : workers_) worker.join();
 }
 
+int WorkerPool::Threads(int wanted) {
+  if (wanted <= 1 || !free_cores_only_.load(std::memory_order_relaxed)) return wanted;
+  const auto now = std::chrono::steady_clock::now().time_since_epoch();
+  return std::min(wanted, budget_.Cores(std::chrono::duration<double>(now).count()));
+}
+
 // offer the loop => drain it here too => withdraw the offer => wait for the helpers inside
 void WorkerPool::Run(int count, int threads, const Body& body) {
   static const int cores = std::max(1, int(std::thread::hardware_concurrency()));

@@ -27,12 +27,15 @@
 // workers only for the helpers that the polling ones do not already give.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include "server/parallel/core_budget.hpp"
 
 namespace flagsim {
 
@@ -54,6 +57,14 @@ class WorkerPool {
   /// all ran.
   /// body must not throw.
   void Run(int count, int threads, const Body& body);
+
+  /// From now on, Threads() allows no more threads than the cores the machine's other processes
+  /// leave free (core_budget.hpp): for a live server beside other work. Off at first, so that
+  /// tests and benchmarks get the threads they ask for.
+  void ShareFreeCoresOnly(bool on) { free_cores_only_.store(on); }
+  /// The threads a stage that wants `wanted` is to use now: `wanted`, or fewer while other
+  /// processes take cores (ShareFreeCoresOnly).
+  int Threads(int wanted);
 
   static constexpr int kMaxWorkers = 63;
   static constexpr double kPollSeconds = 300e-6;  ///< s an idle worker polls before it sleeps
@@ -85,6 +96,8 @@ class WorkerPool {
   std::atomic<int> sleeping_callers_{0};  ///< on left_: Leave notifies only if some are
   std::atomic<int> worker_count_{0};
   std::atomic<bool> stopping_{false};
+  std::atomic<bool> free_cores_only_{false};
+  CoreBudget budget_{std::max(1, int(std::thread::hardware_concurrency()))};
   std::mutex mutex_;              ///< for sleeping, and for adding workers
   std::condition_variable wake_;  ///< sleeping workers: an offer, or stopping
   std::condition_variable left_;  ///< sleeping callers: a helper left a loop

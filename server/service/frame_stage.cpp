@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "messages/utime.hpp"
+#include "server/parallel/worker_pool.hpp"
 
 namespace flagsim {
 
@@ -62,10 +63,11 @@ void FrameStage::Run() {
 // copied state => frame => changed tiles => sink
 void FrameStage::Process(const Job& job) {
   const double start = MonotonicSeconds();
-  const render::Framebuffer& image = painter_.Paint(job.input, job.threads);
+  const int threads = WorkerPool::Shared().Threads(job.threads);
+  const render::Framebuffer& image = painter_.Paint(job.input, threads);
   const double painted = MonotonicSeconds();
   if (job.keyframe_request >= 0) tiles_.RequestKeyframe(job.keyframe_request);
-  const EncodedFrame frame = tiles_.Encode(image, job.input.info, job.threads);
+  const EncodedFrame frame = tiles_.Encode(image, job.input.info, threads);
   const double encoded = MonotonicSeconds();
   sink_(frame);
   const std::lock_guard<std::mutex> lock(mutex_);

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "server/parallel/worker_pool.hpp"
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/cloth_state.hpp"
 #include "server/sim/forces.hpp"
@@ -81,9 +82,11 @@ inline constexpr int kMaxSubsteps = 4096;
 /// as it is, so that the check against kMaxSubsteps reports it rather than a clamped value.
 inline constexpr int kMaxComputedSubsteps = 1 << 16;
 
-/// The threads a step of a `nodes`-node flag uses (SimParams::min_nodes_per_thread).
+/// The threads a step of a `nodes`-node flag uses (SimParams::min_nodes_per_thread), no more than
+/// the pool allows now (WorkerPool::Threads).
 inline int StepThreads(int nodes, const SimParams& params) {
-  return std::max(1, std::min(params.threads, nodes / std::max(1, params.min_nodes_per_thread)));
+  const int wanted = std::max(1, std::min(params.threads, nodes / std::max(1, params.min_nodes_per_thread)));
+  return WorkerPool::Shared().Threads(wanted);
 }
 
 /// Self-collision passes come after every this much of the shortest grid spacing that the
