@@ -2,7 +2,7 @@
 //
 // A loop shared among more threads than the cores left free runs slower than on one thread: a
 // helper is taken off its core for a time slice (milliseconds) while the others wait for the index
-// it holds, and the thread that hands out the loops loses turns too. On this 2-core machine, beside
+// it holds, and the thread that hands out the loops loses turns too. On two cores, beside
 // one process spinning on a core, a 128 x 96 step took 10-15 % longer on two threads than on one.
 // So a live server shares its loops among no more threads than the cores its neighbours leave:
 //   others = (CPU time of the whole machine - CPU time of this process) / wall time

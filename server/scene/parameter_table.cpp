@@ -192,7 +192,8 @@ ParameterTable::ParameterTable() {
            "implicit_euler: conjugate gradient stops at this residual relative to the right-hand side"),
       Integer("threads", 1, 64, &SimParams::threads,
               "worker threads for the step and the frames (no more run at once than the machine has "
-              "cores); the step shares the flag among them from 4096 nodes a thread"),
+              "cores, nor in flagd than other processes leave free); the step shares the flag among "
+              "them from 4096 nodes a thread"),
       Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, "STATE messages per second of simulated time",
            &Scene::service, &ServiceSettings::state_rate),
       Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120,
