@@ -100,20 +100,24 @@ TEST(CollisionCulling, EveryPairThatComesWithinHIsACandidate) {
   EXPECT_LT(candidates, all_pairs / 20);
 }
 
+/// The same pairs in the same order, and some.
+void ExpectSameCandidates(const std::vector<PrimitivePair>& found,
+                          const std::vector<PrimitivePair>& expected) {
+  ASSERT_EQ(found.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(std::tie(found[i].edges, found[i].a, found[i].b),
+              std::tie(expected[i].edges, expected[i].a, expected[i].b));
+  }
+  EXPECT_FALSE(expected.empty());
+}
+
 TEST(CollisionCulling, TheSameCandidatesInTheSameOrderAtAnyThreadCount) {
   std::vector<double> inverse_mass(kCols * kRows, 1.0);
   std::mt19937 random(5);
   NodeRows start, end;
   FoldedSheet(&random, &start, &end);
   CollisionCulling one(kCols, kRows), two(kCols, kRows);
-  const std::vector<PrimitivePair>& by_one = one.Find(start, end, inverse_mass, kH, 1);
-  const std::vector<PrimitivePair>& by_two = two.Find(start, end, inverse_mass, kH, 2);
-  ASSERT_EQ(by_one.size(), by_two.size());
-  for (size_t i = 0; i < by_one.size(); ++i) {
-    EXPECT_EQ(std::tie(by_one[i].edges, by_one[i].a, by_one[i].b),
-              std::tie(by_two[i].edges, by_two[i].a, by_two[i].b));
-  }
-  EXPECT_FALSE(by_one.empty());
+  ExpectSameCandidates(two.Find(start, end, inverse_mass, kH, 2), one.Find(start, end, inverse_mass, kH, 1));
 }
 
 // A step that starts where the last one ended takes over its end normals: the candidates are
@@ -130,14 +134,8 @@ TEST(CollisionCulling, AStepThatStartsWhereTheLastEndedFindsWhatAFreshStartFinds
   }
   CollisionCulling carried(kCols, kRows), fresh(kCols, kRows);
   carried.Find(flat, start, inverse_mass, kH, 1);
-  const std::vector<PrimitivePair>& by_carried = carried.Find(start, end, inverse_mass, kH, 1, true);
-  const std::vector<PrimitivePair>& by_fresh = fresh.Find(start, end, inverse_mass, kH, 1);
-  ASSERT_EQ(by_carried.size(), by_fresh.size());
-  for (size_t i = 0; i < by_fresh.size(); ++i) {
-    EXPECT_EQ(std::tie(by_carried[i].edges, by_carried[i].a, by_carried[i].b),
-              std::tie(by_fresh[i].edges, by_fresh[i].a, by_fresh[i].b));
-  }
-  EXPECT_FALSE(by_fresh.empty());
+  ExpectSameCandidates(carried.Find(start, end, inverse_mass, kH, 1, true),
+                       fresh.Find(start, end, inverse_mass, kH, 1));
 }
 
 }  // namespace
