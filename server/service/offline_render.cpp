@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "server/parallel/worker_pool.hpp"
 #include "server/service/message_builders.hpp"
 
 namespace flagsim {
@@ -59,7 +60,7 @@ void OfflineRender::PublishParams() {
 
 // state => frame => the caller; => changed tiles => the log, paced (tiles, then the manifest)
 void OfflineRender::DrawFrame() {
-  const int threads = session_.scene().sim.threads;
+  const int threads = WorkerPool::Shared().Threads(session_.scene().sim.threads);
   const FrameInput input = FrameInput::Of(session_, log_ != nullptr ? log_->utime() : 0);
   const render::Framebuffer& image = painter_.Paint(input, threads);
   const int64_t frame_id = stats_.frames++;
