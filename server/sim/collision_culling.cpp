@@ -230,9 +230,10 @@ void CollisionCulling::CrossPairs(int a, int b) {
   }
 }
 
-// Whether a plane across the line between the patches' centres parts their swept nodes with
-// room for h: boxes are loose for a tilted sheet, and two patches of one smooth sheet a cell
-// apart are parted along that line by about the cell.
+// Whether a plane parts the patches' swept nodes with room for h: one across the line between
+// their centres (boxes are loose for a tilted sheet, and two patches of one smooth sheet a cell
+// apart are parted along that line by about the cell), else one square to either patch's mean
+// normal (two layers of a fold, one above the other, are parted across it).
 bool CollisionCulling::Separated(int p, int q) const {
   const ClothPatch &a = patches_.patches[p], &b = patches_.patches[q];
   const auto centre = [&](const ClothPatch& patch) {
@@ -240,11 +241,24 @@ bool CollisionCulling::Separated(int p, int q) const {
     for (int node : patch.nodes) sum += Start(node) + End(node);
     return Point(sum / (2.0 * patch.nodes.size()));
   };
-  const Point axis = centre(b) - centre(a);
-  double a_most = -INFINITY, b_least = INFINITY;
-  for (int node : a.nodes) a_most = std::max({a_most, axis.dot(Start(node)), axis.dot(End(node))});
-  for (int node : b.nodes) b_least = std::min({b_least, axis.dot(Start(node)), axis.dot(End(node))});
-  return b_least - a_most > h_ * axis.norm();
+  const auto span = [&](const ClothPatch& patch, const Point& axis) {
+    std::pair<double, double> span{INFINITY, -INFINITY};
+    for (int node : patch.nodes) {
+      const double s = axis.dot(Start(node)), e = axis.dot(End(node));
+      span = {std::min({span.first, s, e}), std::max({span.second, s, e})};
+    }
+    return span;
+  };
+  const Point between = centre(b) - centre(a);
+  if (span(b, between).first - span(a, between).second > h_ * between.norm()) return true;
+  for (int patch : {p, q}) {
+    const Point& normal = region_cone_[leaf_region_[patch]].axis;
+    const auto [a_least, a_most] = span(a, normal);
+    const auto [b_least, b_most] = span(b, normal);
+    const double room = h_ * normal.norm();
+    if (b_least - a_most > room || a_least - b_most > room) return true;
+  }
+  return false;
 }
 
 // The boxes of every patch a pair names; then each pair's candidates into a list of its own (in
@@ -324,9 +338,11 @@ bool CollisionCulling::Immobile(const PrimitivePair& pair) const {
 // a unit axis a, a node stays within a . c +- r of its path's ball (c, r), and a primitive
 // within what its nodes' span; a gap over h between the two spans keeps them h apart at every
 // moment: no proximity and no contact to find. Boxes are loose for a tilted sheet, and
-// neighbours on one smooth sheet are parted this way by about half a cell. The axis: the line
-// between the primitives' centres; for two edges, also that line made square to the first
-// edge (two parallel diagonals of neighbouring cells are parted across it, not along it).
+// neighbours on one smooth sheet are parted this way by about half a cell. The axes, at
+// mid-step: the line between the primitives' centres; for a node and a triangle, then the
+// triangle's normal (a node over another layer of a fold, a little to the side); for two edges,
+// that line made square to the first edge (two parallel diagonals of neighbouring cells are
+// parted across it, not along it), then the direction square to both edges.
 bool CollisionCulling::Parted(const PrimitivePair& pair) const {
   const std::array<int, 4> n = Nodes(pair);
   const int split = pair.edges ? 2 : 1;
@@ -349,10 +365,13 @@ bool CollisionCulling::Parted(const PrimitivePair& pair) const {
   };
   const Point between = centre(split, 4) - centre(0, split);
   if (parted_along(between)) return true;
-  if (!pair.edges) return false;
-  const Point along = path[1]->centre - path[0]->centre;  // the first edge at mid-step
+  const auto c = [&path](int i) -> const Point& { return path[i]->centre; };
+  if (!pair.edges) return parted_along((c(2) - c(1)).cross(c(3) - c(1)));  // the triangle's normal
+  const Point along = c(1) - c(0);                                         // the first edge at mid-step
   const double length_squared = along.squaredNorm();
-  return length_squared > 0 && parted_along(between - along * (between.dot(along) / length_squared));
+  if (length_squared > 0 && parted_along(between - along * (between.dot(along) / length_squared)))
+    return true;
+  return parted_along(along.cross(c(3) - c(2)));  // square to both edges
 }
 
 }  // namespace flagsim::sim

@@ -8,10 +8,11 @@
 //               => patch pairs   down the tree: a region whose cone is narrow cannot meet itself,
 //                                two touching regions whose cones together stay narrow cannot
 //                                meet each other, boxes apart cannot meet; two patches apart
-//                                also need no plane across the line between their centres to
-//                                part them
+//                                also need no plane across the line between their centres, nor
+//                                square to either's mean normal, to part them
 //               => candidates    in each patch pair, the primitives whose boxes overlap and
-//                                that no plane across the line between them parts
+//                                that no plane across the line between them, nor square to the
+//                                triangle's normal or to both edges, parts
 //
 // Why cones and not a spatial hash: a hash pays for every node and cell at every step; the cones
 // cost a normal per triangle and let a smooth flag skip the rest. Threads share the normals
@@ -61,8 +62,8 @@ class CollisionCulling {
   const std::vector<PrimitivePair>& candidates() const { return candidates_; }
   /// The nodes of a pair: (node, triangle's a, b, c), or (edge's two, other edge's two).
   std::array<int, 4> Nodes(const PrimitivePair& pair) const;
-  /// Patch pairs the last Find examined (a patch with itself counts once).
-  int patch_pairs() const { return int(patch_pairs_.size()); }
+  /// The pairs of patches (ClothPatches indices) the last Find examined, a patch with itself once.
+  const std::vector<std::array<int, 2>>& patch_pairs() const { return patch_pairs_; }
 
  private:
   /// An axis-aligned box in float, rounded outwards from the double extent it bounds, at half

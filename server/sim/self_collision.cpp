@@ -61,7 +61,7 @@ bool SelfCollision<Real>::Resolve(const ClothModel<Real>& model, const SimParams
   for (int round = 0;; ++round) {
     culling_.Find(start_, end_, inverse_mass_, thickness_, threads_, round == 0 && start_is_culled_end_);
     if (round == 0) {
-      stats_.patch_pairs = culling_.patch_pairs();
+      stats_.patch_pairs = int(culling_.patch_pairs().size());
       stats_.candidates = int(candidates().size());
       if (candidates().empty()) return false;
       Proximity();

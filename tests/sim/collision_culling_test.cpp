@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 #include <tuple>
@@ -136,6 +138,35 @@ TEST(CollisionCulling, AStepThatStartsWhereTheLastEndedFindsWhatAFreshStartFinds
   carried.Find(flat, start, inverse_mass, kH, 1);
   ExpectSameCandidates(carried.Find(start, end, inverse_mass, kH, 1, true),
                        fresh.Find(start, end, inverse_mass, kH, 1));
+}
+
+// A sheet folded in two, the far half 3 h above the near one and shifted by a third of a cell,
+// tilted 45 degrees about y so that boxes of the two layers overlap. Only the patches that hold
+// the fold have anything within h of the other layer. Two flat patches of the layers a cell
+// apart sideways are not parted across the line between their centres, but across their mean
+// normal they are: no pair of them is examined.
+TEST(CollisionCulling, FlatLayersOfAFoldMoreThanHApartAreNotExamined) {
+  std::vector<double> inverse_mass(kCols * kRows, 1.0);
+  NodeRows sheet(kCols * kRows, 3);
+  const double tilt = M_PI / 4;
+  for (int r = 0; r < kRows; ++r) {
+    for (int c = 0; c < kCols; ++c) {
+      const bool far = c >= kCols / 2;
+      const double x = far ? (kCols - 1 - c) * kSpacing + kSpacing / 3 : c * kSpacing, z = far ? 3 * kH : 0;
+      sheet.row(r * kCols + c) << x * std::cos(tilt) - z * std::sin(tilt), r * kSpacing,
+          x * std::sin(tilt) + z * std::cos(tilt);
+    }
+  }
+  CollisionCulling culling(kCols, kRows);
+  culling.Find(sheet, sheet, inverse_mass, kH, 1);
+  // Patches of 2 x 2 cells, numbered row by row; the fold is in patch column 3 (nodes 6 to 8).
+  constexpr int kPatchCols = (kCols - 1 + 1) / 2;  // 13 cells: 6 whole patches and a half
+  constexpr int kFoldColumn = 3;
+  for (const auto& [p, q] : culling.patch_pairs()) {
+    EXPECT_TRUE(p % kPatchCols == kFoldColumn || q % kPatchCols == kFoldColumn)
+        << "patches " << p << ", " << q;
+  }
+  EXPECT_FALSE(culling.patch_pairs().empty());
 }
 
 }  // namespace
