@@ -230,22 +230,25 @@ void CollisionCulling::CrossPairs(int a, int b) {
   }
 }
 
-// Whether a plane parts the patches' swept nodes with room for h: one across the line between
-// their centres (boxes are loose for a tilted sheet, and two patches of one smooth sheet a cell
-// apart are parted along that line by about the cell), else one square to either patch's mean
-// normal (two layers of a fold, one above the other, are parted across it).
+// Whether a plane parts the patches' nodes' paths (each within its ball, as in Parted) with
+// room for h: one across the line between their centres (boxes are loose for a tilted sheet,
+// and two patches of one smooth sheet a cell apart are parted along that line by about the
+// cell), else one square to either patch's mean normal (two layers of a fold, one above the
+// other, are parted across it).
 bool CollisionCulling::Separated(int p, int q) const {
   const ClothPatch &a = patches_.patches[p], &b = patches_.patches[q];
   const auto centre = [&](const ClothPatch& patch) {
     Point sum = Point::Zero();
-    for (int node : patch.nodes) sum += Start(node) + End(node);
-    return Point(sum / (2.0 * patch.nodes.size()));
+    for (int node : patch.nodes) sum += node_path_[node].centre;
+    return Point(sum / double(patch.nodes.size()));
   };
+  // The least and the most of axis . x over the patch's nodes' paths, each within its ball.
   const auto span = [&](const ClothPatch& patch, const Point& axis) {
+    const double length = axis.norm();
     std::pair<double, double> span{INFINITY, -INFINITY};
     for (int node : patch.nodes) {
-      const double s = axis.dot(Start(node)), e = axis.dot(End(node));
-      span = {std::min({span.first, s, e}), std::max({span.second, s, e})};
+      const double middle = axis.dot(node_path_[node].centre), reach = node_path_[node].radius * length;
+      span = {std::min(span.first, middle - reach), std::max(span.second, middle + reach)};
     }
     return span;
   };
