@@ -245,12 +245,12 @@ bool CollisionCulling::Separated(int p, int q) const {
   // The least and the most of axis . x over the patch's nodes' paths, each within its ball.
   const auto span = [&](const ClothPatch& patch, const Point& axis) {
     const double length = axis.norm();
-    std::pair<double, double> span{INFINITY, -INFINITY};
+    std::pair<double, double> least_most{INFINITY, -INFINITY};
     for (int node : patch.nodes) {
       const double middle = axis.dot(node_path_[node].centre), reach = node_path_[node].radius * length;
-      span = {std::min(span.first, middle - reach), std::max(span.second, middle + reach)};
+      least_most = {std::min(least_most.first, middle - reach), std::max(least_most.second, middle + reach)};
     }
-    return span;
+    return least_most;
   };
   const Point between = centre(b) - centre(a);
   if (span(b, between).first - span(a, between).second > h_ * between.norm()) return true;
@@ -369,8 +369,10 @@ bool CollisionCulling::Parted(const PrimitivePair& pair) const {
   const Point between = centre(split, 4) - centre(0, split);
   if (parted_along(between)) return true;
   const auto c = [&path](int i) -> const Point& { return path[i]->centre; };
-  if (!pair.edges) return parted_along((c(2) - c(1)).cross(c(3) - c(1)));  // the triangle's normal
-  const Point along = c(1) - c(0);                                         // the first edge at mid-step
+  // The triangle's normal.
+  if (!pair.edges) return parted_along((c(2) - c(1)).cross(c(3) - c(1)));
+  // The first edge at mid-step.
+  const Point along = c(1) - c(0);
   const double length_squared = along.squaredNorm();
   if (length_squared > 0 && parted_along(between - along * (between.dot(along) / length_squared)))
     return true;

@@ -160,8 +160,7 @@ TEST(CollisionCulling, FlatLayersOfAFoldMoreThanHApartAreNotExamined) {
   CollisionCulling culling(kCols, kRows);
   culling.Find(sheet, sheet, inverse_mass, kH, 1);
   // Patches of 2 x 2 cells, numbered row by row; the fold is in patch column 3 (nodes 6 to 8).
-  constexpr int kPatchCols = (kCols - 1 + 1) / 2;  // 13 cells: 6 whole patches and a half
-  constexpr int kFoldColumn = 3;
+  constexpr int kCells = kCols - 1, kPatchCols = (kCells + 1) / 2, kFoldColumn = 3;
   for (const auto& [p, q] : culling.patch_pairs()) {
     EXPECT_TRUE(p % kPatchCols == kFoldColumn || q % kPatchCols == kFoldColumn)
         << "patches " << p << ", " << q;
