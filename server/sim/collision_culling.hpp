@@ -103,8 +103,6 @@ class CollisionCulling {
   void AddPairs(int p, int q, std::vector<Near>* near, std::vector<PrimitivePair>* found) const;
   bool Immobile(const PrimitivePair& pair) const;
   bool Parted(const PrimitivePair& pair) const;
-  Point Start(int node) const { return (*start_).row(node).transpose().matrix(); }
-  Point End(int node) const { return (*end_).row(node).transpose().matrix(); }
 
   int cols_ = 0;
   ClothMesh mesh_;
