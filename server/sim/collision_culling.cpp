@@ -9,13 +9,6 @@
 namespace flagsim::sim {
 namespace {
 
-/// Elements 0, 2, 4, ... of the run of 2 count - 1 values at `data`.
-template <typename Scalar>
-Eigen::Map<Eigen::Array<Scalar, Eigen::Dynamic, 1>, 0, Eigen::InnerStride<2>> EveryOther(Scalar* data,
-                                                                                         int count) {
-  return {data, count};
-}
-
 /// A normal worked out in double and kept in float is off by at most 2^-24 of its length
 /// (rounding to nearest, each component); the cones allow twice that.
 constexpr double kNormalRounding = 0x1p-23;
@@ -42,6 +35,13 @@ CollisionCulling::CollisionCulling(int cols, int rows)
   leaf_region_.resize(patches_.patches.size());
   for (size_t r = 0; r < patches_.regions.size(); ++r) {
     if (patches_.regions[r].leaf()) leaf_region_[patches_.regions[r].patch] = int(r);
+  }
+  // Patch p's i-th triangle: slot i of block p / kLanes, lane p % kLanes.
+  triangle_slot_.resize(mesh_.triangles.size());
+  for (int p = 0; p < int(patches_.patches.size()); ++p) {
+    int i = 0;
+    for (int t : patches_.patches[p].triangles)
+      triangle_slot_[t] = ((p / kLanes) * kSlots + i++) * kLanes + p % kLanes;
   }
 }
 
@@ -103,92 +103,128 @@ CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
   return node_box_[a].Joined(node_box_[b]);
 }
 
-// Every triangle's normal (unnormalised) at the step's start and end, the longer, and a bound
-// on how far the normal strays between them: |du x dv| <= |du| |dv|, and an edge's change
-// du = d_b - d_a is at most |d_a| + |d_b| for the nodes' displacements d. Row by row of cells,
-// each coordinate of a row a contiguous run: the arithmetic is vectorised. Where the step starts
-// exactly where the last one ended (one pass after another, no contact between), the start
-// normals are the last end normals.
+// Every triangle's normal (unnormalised), n = (b - a) x (c - a), at the step's start and end,
+// and a bound on how far it strays between them: |du x dv| <= |du| |dv|, and an edge's change
+// du = d_b - d_a is at most |d_a| + |d_b| for the nodes' displacements d. A run of cells of a
+// row at a time, each coordinate a contiguous run of nodes (vectorised), then each triangle's
+// values into its patch's slot (triangle_slot_). Where the step starts exactly where the last one
+// ended (one pass after another, no contact between), the start normals are the last end
+// normals.
 void CollisionCulling::TriangleNormals(bool start_is_last_end) {
-  const int cells = cols_ - 1, rows = int(start_->rows()) / cols_, triangles = 2 * cells * (rows - 1);
-  const bool reuse = start_is_last_end && normal_end_.rows() == triangles;
+  const int slots = (int(patches_.patches.size()) + kLanes - 1) / kLanes * kSlots * kLanes;
+  const bool reuse = start_is_last_end && normal_end_.rows() == slots;
   if (reuse) normal_start_.swap(normal_end_);
-  normal_start_.resize(triangles, 3);
-  normal_end_.resize(triangles, 3);
-  normal_curl_.resize(triangles);
-  const auto moved = [&](int node) { return moved_by_.array().segment(node, cells); };
-  ParallelFor(rows - 1, threads_, [&](int r) {
-    const int top = r * cols_, bottom = top + cols_, first = 2 * r * cells;
-    if (!reuse) CellNormals(*start_, top, bottom, cells, first, &normal_start_);
-    CellNormals(*end_, top, bottom, cells, first, &normal_end_);
-    EveryOther(normal_curl_.data() + first, cells) =
-        (moved(top) + moved(bottom)) * (moved(top) + moved(top + 1));
-    EveryOther(normal_curl_.data() + first + 1, cells) =
-        (moved(bottom) + moved(bottom + 1)) * (moved(bottom) + moved(top + 1));
+  if (normal_curl_.rows() != slots) {  // slots that no triangle fills stay zero
+    normal_start_.setZero(slots, 3);
+    normal_end_.setZero(slots, 3);
+    normal_curl_.setZero(slots);
+  }
+  const int cells = cols_ - 1, rows = int(start_->rows()) / cols_ - 1;
+  const auto moved = [&](int node, int count) { return moved_by_.array().segment(node, count); };
+  ParallelFor(rows, threads_, [&](int r) {
+    for (int c = 0; c < cells; c += kRun) {
+      const int count = std::min(kRun, cells - c), top = r * cols_ + c, bottom = top + cols_;
+      // The lower triangles (i, i + cols, i + 1) and the upper (i + cols, i + cols + 1, i + 1),
+      // as cloth_mesh.hpp lists them: cell k's are triangles 2k and 2k + 1.
+      for (int upper = 0; upper < 2; ++upper) {
+        const RunOfCells run{upper ? bottom : top, upper ? bottom + 1 : bottom, top + 1, count,
+                             2 * (r * cells + c) + upper};
+        if (!reuse) StoreNormals(*start_, run, &normal_start_);
+        StoreNormals(*end_, run, &normal_end_);
+        Eigen::Array<double, kRun, 1> curl;
+        curl.head(count) =
+            (moved(run.a, count) + moved(run.b, count)) * (moved(run.a, count) + moved(run.c, count));
+        for (int i = 0; i < count; ++i) normal_curl_[triangle_slot_[run.triangle + 2 * i]] = curl[i];
+      }
+    }
   });
-  const auto squared = [](const NormalRows& n) {
-    return n.col(0).cast<double>().square() + n.col(1).cast<double>().square() +
-           n.col(2).cast<double>().square();
-  };
-  normal_longest_ = squared(normal_start_).max(squared(normal_end_)).sqrt();
 }
 
-// The normals (b - a) x (c - a) of a row of cells' two triangles, as cloth_mesh.hpp lists them:
-// (i, i + cols, i + 1) into rows first, first + 2, ... of `normals` and
-// (i + cols, i + cols + 1, i + 1) into first + 1, first + 3, ..., for i from `top` on and
-// i + cols from `bottom` on.
-void CollisionCulling::CellNormals(const NodeRows& x, int top, int bottom, int cells, int first,
-                                   NormalRows* normals) {
-  const auto run = [&x, cells](int k, int node) { return x.col(k).segment(node, cells); };
-  for (int upper = 0; upper < 2; ++upper) {
-    const int a = upper ? bottom : top, b = upper ? bottom + 1 : bottom, c = top + 1;
-    const auto u = [&](int k) { return run(k, b) - run(k, a); };
-    const auto v = [&](int k) { return run(k, c) - run(k, a); };
-    for (int k = 0; k < 3; ++k) {
-      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-      EveryOther(normals->col(k).data() + first + upper, cells) =
-          (u(k1) * v(k2) - u(k2) * v(k1)).template cast<float>();
+void CollisionCulling::StoreNormals(const NodeRows& x, const RunOfCells& run, NormalRows* normals) const {
+  const double *px = x.col(0).data(), *py = x.col(1).data(), *pz = x.col(2).data();
+  float n[3][kRun];
+#pragma omp simd
+  for (int i = 0; i < run.count; ++i) {
+    const int a = run.a + i, b = run.b + i, c = run.c + i;
+    const double ux = px[b] - px[a], uy = py[b] - py[a], uz = pz[b] - pz[a];
+    const double vx = px[c] - px[a], vy = py[c] - py[a], vz = pz[c] - pz[a];
+    n[0][i] = float(uy * vz - uz * vy);
+    n[1][i] = float(uz * vx - ux * vz);
+    n[2][i] = float(ux * vy - uy * vx);
+  }
+  for (int i = 0; i < run.count; ++i) {
+    const int slot = triangle_slot_[run.triangle + 2 * i];
+    for (int k = 0; k < 3; ++k) (*normals)(slot, k) = n[k][i];
+  }
+}
+
+// The cones of a block of kLanes patches, a patch to a lane. A patch's cone is about its mean
+// normal over the step, and holds every triangle's normal n(t) = (1 - t) n0 + t n1 - t (1 - t)
+// du x dv at every moment t of the step, since n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and
+// |n(t)| <= max(|n0|, |n1|) + curl / 4. The least of n(t) . d / |n(t)| over the triangles is
+// the cone's cosine. With n0 and n1 kept in float, each bound gives up their rounding too
+// (kNormalRounding of the longer).
+void CollisionCulling::PatchCones(int block) {
+  using Lanes = Eigen::Array<double, kLanes, 1>;
+  using Vector = std::array<Lanes, 3>;
+  const int first = block * kSlots * kLanes;  // the block's first slot
+  const auto normal = [first](const NormalRows& normals, int s) {
+    Vector n;
+    for (int k = 0; k < 3; ++k)
+      n[k] = normals.col(k).segment<kLanes>(first + s * kLanes).template cast<double>();
+    return n;
+  };
+  const auto dot = [](const Vector& u, const Vector& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  // Each lane's triangle count: slots from there on hold none, and must not lower its cone.
+  Lanes triangles = Lanes::Zero();
+  for (int lane = 0; lane < kLanes && block * kLanes + lane < int(patches_.patches.size()); ++lane)
+    triangles[lane] = double(patches_.patches[block * kLanes + lane].triangles.size());
+  Vector sum{Lanes::Zero(), Lanes::Zero(), Lanes::Zero()};
+  for (int s = 0; s < kSlots; ++s) {
+    const Vector n0 = normal(normal_start_, s), n1 = normal(normal_end_, s);
+    for (int k = 0; k < 3; ++k) sum[k] += n0[k] + n1[k];
+  }
+  const Lanes length = dot(sum, sum).sqrt();
+  const Vector axis{sum[0] / length, sum[1] / length, sum[2] / length};
+  Lanes least = Lanes::Ones();
+  for (int s = 0; s < kSlots; ++s) {
+    const Vector n0 = normal(normal_start_, s), n1 = normal(normal_end_, s);
+    const Lanes longest = dot(n0, n0).max(dot(n1, n1)).sqrt();
+    const Lanes curl = normal_curl_.segment<kLanes>(first + s * kLanes) / 4 + kNormalRounding * longest;
+    const Lanes along = dot(n0, axis).min(dot(n1, axis)) - curl;
+    const Lanes ratio = (along <= 0).select(Lanes::Constant(-1), along / (longest + curl));
+    least = (double(s) < triangles).select(least.min(ratio), least);
+  }
+  for (int lane = 0; lane < kLanes; ++lane) {
+    const int p = block * kLanes + lane;
+    if (p == int(patches_.patches.size())) break;
+    NormalCone& cone = region_cone_[leaf_region_[p]];
+    if (length[lane] == 0) {
+      cone = {Point::UnitZ()};
+      continue;
+    }
+    cone = {Point(axis[0][lane], axis[1][lane], axis[2][lane])};
+    if (least[lane] > 0) {
+      cone.cos_half = least[lane];
+      cone.sin_half = std::sqrt((1 - least[lane]) * (1 + least[lane]));
     }
   }
 }
 
-// The cone of a leaf patch: about its mean normal over the step, holding every triangle's
-// normal n(t) = (1 - t) n0 + t n1 - t (1 - t) du x dv at every moment t of the step, since
-// n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and |n(t)| <= max(|n0|, |n1|) + curl / 4. The
-// least of n(t) . d / |n(t)| over the triangles is the cone's cosine. With n0 and n1 kept in
-// float, each bound gives up their rounding too (kNormalRounding of the longer).
-NormalCone CollisionCulling::PatchCone(const ClothPatch& patch) const {
-  Point sum = Point::Zero();
-  const auto normal = [](const NormalRows& rows, int t) {
-    return Point(rows.row(t).transpose().cast<double>().matrix());
-  };
-  for (int t : patch.triangles) sum += normal(normal_start_, t) + normal(normal_end_, t);
-  const double length = sum.norm();
-  if (length == 0) return {Point::UnitZ()};
-  const Point axis = sum / length;
-  double least = 1;
-  for (int t : patch.triangles) {
-    const double curl = normal_curl_[t] / 4 + kNormalRounding * normal_longest_[t];
-    const double along =
-        std::min(normal(normal_start_, t).dot(axis), normal(normal_end_, t).dot(axis)) - curl;
-    least = std::min(least, along <= 0 ? -1.0 : along / (normal_longest_[t] + curl));
-  }
-  if (least <= 0) return {axis};
-  return {axis, least, std::sqrt((1 - least) * (1 + least))};
-}
-
-// Regions' boxes and cones: the leaves from their nodes and triangles (in parallel), then the
-// rest from their halves, which come before them.
+// Regions' boxes and cones: the leaves from their nodes and triangles (in parallel, a block of
+// patches at a time), then the rest from their halves, which come before them.
 void CollisionCulling::RegionBounds() {
   const std::vector<PatchRegion>& regions = patches_.regions;
   region_box_.resize(regions.size());
   region_cone_.resize(regions.size());
-  ParallelFor(int(leaf_region_.size()), threads_, [&](int p) {
-    const ClothPatch& patch = patches_.patches[p];
-    Box box = Box::Empty();
-    for (int node : patch.nodes) box = box.Joined(node_box_[node]);
-    region_box_[leaf_region_[p]] = box;
-    region_cone_[leaf_region_[p]] = PatchCone(patch);
+  const int patches = int(patches_.patches.size());
+  ParallelFor((patches + kLanes - 1) / kLanes, threads_, [&](int block) {
+    PatchCones(block);
+    for (int p = block * kLanes; p < std::min(patches, (block + 1) * kLanes); ++p) {
+      Box box = Box::Empty();
+      for (int node : patches_.patches[p].nodes) box = box.Joined(node_box_[node]);
+      region_box_[leaf_region_[p]] = box;
+    }
   });
   for (size_t r = 0; r < regions.size(); ++r) {
     const PatchRegion& region = regions[r];

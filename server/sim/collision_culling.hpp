@@ -33,8 +33,7 @@ namespace flagsim::sim {
 
 /// Positions, one row per node: x, y, z in columns, so that each coordinate is contiguous.
 using NodeRows = Eigen::Array<double, Eigen::Dynamic, 3>;
-/// Triangle normals, one row per triangle, kept in float (collision_culling.cpp says how the
-/// cones allow for it).
+/// Triangle normals in float: x, y, z in columns.
 using NormalRows = Eigen::Array<float, Eigen::Dynamic, 3>;
 
 /// A pair of primitives that may meet: a node and a triangle, or two edges (ClothMesh indices).
@@ -46,7 +45,10 @@ struct PrimitivePair {
 class CollisionCulling {
  public:
   static constexpr int kPatchCells = 2;    ///< cells along a patch's side
-  static constexpr int kNodeBlock = 1024;  ///< nodes a thread takes at a time
+  static constexpr int kNodeBlock = 1024;  ///< nodes (or triangles) a thread takes at a time
+  /// Patches whose cones are worked out together, one to a lane of vector instructions.
+  static constexpr int kLanes = 4;
+  static constexpr int kSlots = 2 * kPatchCells * kPatchCells;  ///< triangles a patch has at most
 
   CollisionCulling(int cols, int rows);
 
@@ -85,8 +87,15 @@ class CollisionCulling {
   };
 
   void SweptBoxes();
+  /// Cells of a row at a time in TriangleNormals.
+  static constexpr int kRun = 64;
+  /// A run of `count` cells' lower or upper triangles: the first one's nodes, a, b and c, and
+  /// its index (ClothMesh); the rest follow a node and two triangles apart.
+  struct RunOfCells {
+    int a, b, c, count, triangle;
+  };
   void TriangleNormals(bool start_is_last_end);
-  static void CellNormals(const NodeRows& x, int top, int bottom, int cells, int first, NormalRows* normals);
+  void StoreNormals(const NodeRows& x, const RunOfCells& run, NormalRows* normals) const;
   Box TriangleBox(int triangle) const;
   Box EdgeBox(int edge) const;
   /// A primitive of one patch inside another's box, and its own box.
@@ -94,7 +103,7 @@ class CollisionCulling {
     int index;
     Box box;
   };
-  NormalCone PatchCone(const ClothPatch& patch) const;
+  void PatchCones(int block);
   void RegionBounds();
   void SelfPairs(int region);
   void CrossPairs(int a, int b);
@@ -121,11 +130,15 @@ class CollisionCulling {
   std::vector<Box> region_box_;          ///< per region, its nodes' swept boxes together
   std::vector<NormalCone> region_cone_;  ///< per region
   Eigen::VectorXd moved_by_;             ///< m, per node, |x1 - x0|
-  // Per triangle, in ClothMesh order: its normal (unnormalised, m^2) at the step's start and
-  // end, the longer of the two, and curl >= |du x dv|, which bounds how far the normal strays
-  // between them (collision_culling.cpp).
+  // Per triangle, by patch: its normal (unnormalised, m^2) at the step's start and end, kept in
+  // float (collision_culling.cpp says how the cones allow for it), and curl >= |du x dv|, which
+  // bounds how far the normal strays between them. Patches go kLanes to a block and a block has
+  // kSlots slots of kLanes rows, a patch's triangles in its lane: slot s of block b holds, in
+  // lane l, the s-th triangle of patch b kLanes + l (in ClothMesh order). Vectors of kLanes
+  // patches' values are contiguous.
+  std::vector<int> triangle_slot_;  ///< per triangle (ClothMesh order): its row below
   NormalRows normal_start_, normal_end_;
-  Eigen::ArrayXd normal_longest_, normal_curl_;
+  Eigen::ArrayXd normal_curl_;
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
   std::vector<std::vector<PrimitivePair>> pair_candidates_;  ///< per patch pair, its candidates
   std::vector<std::vector<Near>>
