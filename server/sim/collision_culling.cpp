@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "server/parallel/worker_pool.hpp"
@@ -175,10 +176,14 @@ void CollisionCulling::PatchCones(int block) {
     return n;
   };
   const auto dot = [](const Vector& u, const Vector& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
-  // Each lane's triangle count: slots from there on hold none, and must not lower its cone.
-  Lanes triangles = Lanes::Zero();
-  for (int lane = 0; lane < kLanes && block * kLanes + lane < int(patches_.patches.size()); ++lane)
-    triangles[lane] = double(patches_.patches[block * kLanes + lane].triangles.size());
+  // The least each slot's ratio may be: -inf where the lane's patch has a triangle there, else
+  // 1, so that an empty slot never lowers the cone.
+  std::array<Lanes, kSlots> floor;
+  for (int lane = 0; lane < kLanes; ++lane) {
+    const int p = block * kLanes + lane;
+    const int triangles = p < int(patches_.patches.size()) ? int(patches_.patches[p].triangles.size()) : 0;
+    for (int s = 0; s < kSlots; ++s) floor[s][lane] = s < triangles ? -INFINITY : 1.0;
+  }
   Vector sum{Lanes::Zero(), Lanes::Zero(), Lanes::Zero()};
   for (int s = 0; s < kSlots; ++s) {
     const Vector n0 = normal(normal_start_, s), n1 = normal(normal_end_, s);
@@ -192,8 +197,10 @@ void CollisionCulling::PatchCones(int block) {
     const Lanes longest = dot(n0, n0).max(dot(n1, n1)).sqrt();
     const Lanes curl = normal_curl_.segment<kLanes>(first + s * kLanes) / 4 + kNormalRounding * longest;
     const Lanes along = dot(n0, axis).min(dot(n1, axis)) - curl;
-    const Lanes ratio = (along <= 0).select(Lanes::Constant(-1), along / (longest + curl));
-    least = (double(s) < triangles).select(least.min(ratio), least);
+    // At most 0 where a normal may turn 90 degrees; the least positive double keeps a degenerate
+    // triangle (and an empty slot) from 0 / 0.
+    const Lanes ratio = along / (longest + curl + std::numeric_limits<double>::min());
+    least = least.min(ratio.max(floor[s]));
   }
   for (int lane = 0; lane < kLanes; ++lane) {
     const int p = block * kLanes + lane;

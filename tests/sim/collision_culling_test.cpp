@@ -168,5 +168,24 @@ TEST(CollisionCulling, FlatLayersOfAFoldMoreThanHApartAreNotExamined) {
   EXPECT_FALSE(culling.patch_pairs().empty());
 }
 
+// A flat sheet but for one cell whose four nodes lie on one point: its triangles have no
+// normal, so no cone can hold them, and its patch is examined against itself.
+TEST(CollisionCulling, APatchWithACollapsedCellIsExamined) {
+  std::vector<double> inverse_mass(kCols * kRows, 1.0);
+  NodeRows sheet(kCols * kRows, 3);
+  for (int r = 0; r < kRows; ++r) {
+    for (int c = 0; c < kCols; ++c) sheet.row(r * kCols + c) << c * kSpacing, r * kSpacing, 0;
+  }
+  // Cell (row 5, column 9): patch (2, 4), numbered row by row.
+  constexpr int kCellRow = 5, kCellCol = 9, kPatchCols = (kCols - 1 + 1) / 2;
+  for (const int node : {0, 1, kCols, kCols + 1})
+    sheet.row(kCellRow * kCols + kCellCol + node) = sheet.row(kCellRow * kCols + kCellCol);
+  CollisionCulling culling(kCols, kRows);
+  culling.Find(sheet, sheet, inverse_mass, kH, 1);
+  const int patch = (kCellRow / 2) * kPatchCols + kCellCol / 2;
+  const std::vector<std::array<int, 2>>& pairs = culling.patch_pairs();
+  EXPECT_NE(std::find(pairs.begin(), pairs.end(), std::array<int, 2>{patch, patch}), pairs.end());
+}
+
 }  // namespace
 }  // namespace flagsim::sim
