@@ -44,11 +44,12 @@ NormalCone NormalCone::Union(const NormalCone& a, const NormalCone& b) {
   const ConeSum sum = Sum(a, b);
   if (sum.holder != nullptr) return *sum.holder;
   if (sum.sin_s <= 0) return {a.axis};  // s in [180, 360) degrees, or either cone was not narrow
-  // s / 2, and the turn s / 2 - ta; the axis is sin(beta - turn) a + sin(turn) b, normalised.
+  // s / 2, and the turn s / 2 - ta; the axis is sin(beta - turn) a + sin(turn) b over sin(beta),
+  // its length (as in spherical interpolation).
   const double ch = std::sqrt((1 + sum.cos_s) / 2), sh = std::sqrt((1 - sum.cos_s) / 2);
   const double st = sh * a.cos_half - ch * a.sin_half, ct = ch * a.cos_half + sh * a.sin_half;
   const Point axis = (sum.sin_beta * ct - sum.cos_beta * st) * a.axis + st * b.axis;
-  return {axis.normalized(), ch, sh};
+  return {axis / sum.sin_beta, ch, sh};
 }
 
 bool NormalCone::NarrowTogether(const NormalCone& a, const NormalCone& b) {

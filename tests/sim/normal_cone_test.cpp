@@ -33,6 +33,7 @@ TEST(NormalCone, TheUnionHoldsBothAndIsNoWiderThanItMustBe) {
     EXPECT_EQ(both.Narrow(), NormalCone::NarrowTogether(a, b));
     if (!both.Narrow()) continue;
     ++narrow;
+    EXPECT_NEAR(both.axis.norm(), 1, 1e-12);
     for (int k = 0; k < 16; ++k) {
       const double turn = 2 * M_PI * k / 16;
       EXPECT_GE(Rim(a, turn).dot(both.axis), both.cos_half - 1e-9);
