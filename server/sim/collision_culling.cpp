@@ -178,11 +178,11 @@ void CollisionCulling::PatchCones(int block) {
   const auto dot = [](const Vector& u, const Vector& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
   // The least each slot's ratio may be: -inf where the lane's patch has a triangle there, else
   // 1, so that an empty slot never lowers the cone.
-  std::array<Lanes, kSlots> floor;
+  std::array<Lanes, kSlots> slot_floor;
   for (int lane = 0; lane < kLanes; ++lane) {
     const int p = block * kLanes + lane;
     const int triangles = p < int(patches_.patches.size()) ? int(patches_.patches[p].triangles.size()) : 0;
-    for (int s = 0; s < kSlots; ++s) floor[s][lane] = s < triangles ? -INFINITY : 1.0;
+    for (int s = 0; s < kSlots; ++s) slot_floor[s][lane] = s < triangles ? -INFINITY : 1.0;
   }
   Vector sum{Lanes::Zero(), Lanes::Zero(), Lanes::Zero()};
   for (int s = 0; s < kSlots; ++s) {
@@ -200,7 +200,7 @@ void CollisionCulling::PatchCones(int block) {
     // At most 0 where a normal may turn 90 degrees; the least positive double keeps a degenerate
     // triangle (and an empty slot) from 0 / 0.
     const Lanes ratio = along / (longest + curl + std::numeric_limits<double>::min());
-    least = least.min(ratio.max(floor[s]));
+    least = least.min(ratio.max(slot_floor[s]));
   }
   for (int lane = 0; lane < kLanes; ++lane) {
     const int p = block * kLanes + lane;

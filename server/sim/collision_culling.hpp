@@ -45,7 +45,7 @@ struct PrimitivePair {
 class CollisionCulling {
  public:
   static constexpr int kPatchCells = 2;    ///< cells along a patch's side
-  static constexpr int kNodeBlock = 1024;  ///< nodes (or triangles) a thread takes at a time
+  static constexpr int kNodeBlock = 1024;  ///< nodes a thread takes at a time
   /// Patches whose cones are worked out together, one to a lane of vector instructions.
   static constexpr int kLanes = 4;
   static constexpr int kSlots = 2 * kPatchCells * kPatchCells;  ///< triangles a patch has at most
@@ -95,6 +95,7 @@ class CollisionCulling {
     int a, b, c, count, triangle;
   };
   void TriangleNormals(bool start_is_last_end);
+  /// The normals (b - a) x (c - a) of the run's triangles at positions `x`, into their slots.
   void StoreNormals(const NodeRows& x, const RunOfCells& run, NormalRows* normals) const;
   Box TriangleBox(int triangle) const;
   Box EdgeBox(int edge) const;

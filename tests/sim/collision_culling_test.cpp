@@ -177,7 +177,7 @@ TEST(CollisionCulling, APatchWithACollapsedCellIsExamined) {
     for (int c = 0; c < kCols; ++c) sheet.row(r * kCols + c) << c * kSpacing, r * kSpacing, 0;
   }
   // Cell (row 5, column 9): patch (2, 4), numbered row by row.
-  constexpr int kCellRow = 5, kCellCol = 9, kPatchCols = (kCols - 1 + 1) / 2;
+  constexpr int kCellRow = 5, kCellCol = 9, kCells = kCols - 1, kPatchCols = (kCells + 1) / 2;
   for (const int node : {0, 1, kCols, kCols + 1})
     sheet.row(kCellRow * kCols + kCellCol + node) = sheet.row(kCellRow * kCols + kCellCol);
   CollisionCulling culling(kCols, kRows);
