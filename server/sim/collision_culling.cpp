@@ -328,19 +328,24 @@ void CollisionCulling::Candidates() {
 }
 
 // p's own nodes against q's triangles; p's own edges against q's own edges (for a patch with
-// itself, each edge pair once; for two patches, called both ways, the edges once). Only the
-// primitives inside the other patch's box take part (`near` is scratch for them).
+// itself, each edge pair once; for two patches, called both ways, the edges once). Only p's
+// primitives inside q's box take part (`near` is scratch for them), and only q's whose box
+// meets theirs together.
 void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
                                 std::vector<PrimitivePair>* found) const {
   const ClothPatch &from = patches_.patches[p], &to = patches_.patches[q];
-  const Box &from_box = region_box_[leaf_region_[p]], &to_box = region_box_[leaf_region_[q]];
+  const Box& to_box = region_box_[leaf_region_[q]];
+  Box near_box = Box::Empty();  // the near primitives' boxes together: none outside it meets one
+  const auto keep_if_near = [&](int index, const Box& box) {
+    if (!box.Overlaps(to_box)) return;
+    near->push_back({index, box});
+    near_box = near_box.Joined(box);
+  };
   near->clear();
-  for (int node : from.owned_nodes) {
-    if (node_box_[node].Overlaps(to_box)) near->push_back({node, node_box_[node]});
-  }
-  for (int t : to.triangles) {
+  for (int node : from.owned_nodes) keep_if_near(node, node_box_[node]);
+  for (int t : near->empty() ? IndexSpan{} : to.triangles) {
     const Box box = TriangleBox(t);
-    if (!box.Overlaps(from_box)) continue;
+    if (!box.Overlaps(near_box)) continue;
     for (const Near& node : *near) {
       if (mesh_.HasCorner(t, node.index) || !node.box.Overlaps(box)) continue;
       const PrimitivePair pair{false, node.index, t};
@@ -349,13 +354,11 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
   }
   if (p > q) return;
   near->clear();
-  for (int e : from.owned_edges) {
-    const Box box = EdgeBox(e);
-    if (box.Overlaps(to_box)) near->push_back({e, box});
-  }
-  for (int f : to.owned_edges) {
+  near_box = Box::Empty();
+  for (int e : from.owned_edges) keep_if_near(e, EdgeBox(e));
+  for (int f : near->empty() ? IndexSpan{} : to.owned_edges) {
     const Box box = EdgeBox(f);
-    if (!box.Overlaps(from_box)) continue;
+    if (!box.Overlaps(near_box)) continue;
     for (const Near& edge : *near) {
       const int e = edge.index;
       if ((p == q && f <= e) || mesh_.Adjacent(e, f) || !edge.box.Overlaps(box)) continue;
