@@ -10,9 +10,10 @@
 namespace flagsim::sim {
 namespace {
 
-/// A normal worked out in double and kept in float is off by at most 2^-24 of its length
-/// (rounding to nearest, each component); the cones allow twice that.
-constexpr double kNormalRounding = 0x1p-23;
+/// What PatchCones takes off a cone's cosine for its float arithmetic: 2^-16, where the
+/// rounding of the normals, the dot products, the square roots and quotients, and of the axis
+/// to a unit vector come to some 2^-21 at most.
+constexpr double kConeRounding = 0x1p-16;
 
 // Rounding to nearest puts float(y) within |y| 2^-24 of y (and within 2^-150 below 2^-126),
 // so lowering a bound by 2^-22 of itself and a little more before rounding keeps it below;
@@ -37,13 +38,20 @@ CollisionCulling::CollisionCulling(int cols, int rows)
   for (size_t r = 0; r < patches_.regions.size(); ++r) {
     if (patches_.regions[r].leaf()) leaf_region_[patches_.regions[r].patch] = int(r);
   }
-  // Patch p's i-th triangle: slot i of block p / kLanes, lane p % kLanes.
-  triangle_slot_.resize(mesh_.triangles.size());
-  for (int p = 0; p < int(patches_.patches.size()); ++p) {
-    int i = 0;
-    for (int t : patches_.patches[p].triangles)
-      triangle_slot_[t] = ((p / kLanes) * kSlots + i++) * kLanes + p % kLanes;
+  // Each region's height over its deepest leaf (its halves come before it), then the regions
+  // above the leaves by height.
+  std::vector<int> height(patches_.regions.size(), 0);
+  for (size_t r = 0; r < patches_.regions.size(); ++r) {
+    const PatchRegion& region = patches_.regions[r];
+    if (!region.leaf()) height[r] = 1 + std::max(height[region.left], height[region.right]);
   }
+  for (int level = 1; level <= height.back(); ++level) {
+    level_starts_.push_back(int(by_level_.size()));
+    for (size_t r = 0; r < height.size(); ++r) {
+      if (height[r] == level) by_level_.push_back(int(r));
+    }
+  }
+  level_starts_.push_back(int(by_level_.size()));
 }
 
 const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, const NodeRows& end,
@@ -106,13 +114,15 @@ CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
 
 // Every triangle's normal (unnormalised), n = (b - a) x (c - a), at the step's start and end,
 // and a bound on how far it strays between them: |du x dv| <= |du| |dv|, and an edge's change
-// du = d_b - d_a is at most |d_a| + |d_b| for the nodes' displacements d. A run of cells of a
-// row at a time, each coordinate a contiguous run of nodes (vectorised), then each triangle's
-// values into its patch's slot (triangle_slot_). Where the step starts exactly where the last one
+// du = d_b - d_a is at most |d_a| + |d_b| for the nodes' displacements d. A run of a row's lower
+// or upper triangles at a time, each coordinate a contiguous run of nodes (vectorised), then
+// every kPatchCells-th into the rows of its slot. Where the step starts exactly where the last one
 // ended (one pass after another, no contact between), the start normals are the last end
 // normals.
 void CollisionCulling::TriangleNormals(bool start_is_last_end) {
-  const int slots = (int(patches_.patches.size()) + kLanes - 1) / kLanes * kSlots * kLanes;
+  const int cell_rows = int(start_->rows()) / cols_ - 1;
+  const int patch_rows = (cell_rows + kPatchCells - 1) / kPatchCells;
+  const int slots = patch_rows * kSlots * lane_cols();
   const bool reuse = start_is_last_end && normal_end_.rows() == slots;
   if (reuse) normal_start_.swap(normal_end_);
   if (normal_curl_.rows() != slots) {  // slots that no triangle fills stay zero
@@ -120,30 +130,39 @@ void CollisionCulling::TriangleNormals(bool start_is_last_end) {
     normal_end_.setZero(slots, 3);
     normal_curl_.setZero(slots);
   }
-  const int cells = cols_ - 1, rows = int(start_->rows()) / cols_ - 1;
-  const auto moved = [&](int node, int count) { return moved_by_.array().segment(node, count); };
-  ParallelFor(rows, threads_, [&](int r) {
-    for (int c = 0; c < cells; c += kRun) {
-      const int count = std::min(kRun, cells - c), top = r * cols_ + c, bottom = top + cols_;
+  ParallelFor(cell_rows, threads_, [&](int r) {
+    for (int c = 0; c < cell_cols(); c += kRun) {
+      const int count = std::min(kRun, cell_cols() - c), top = r * cols_ + c, bottom = top + cols_;
       // The lower triangles (i, i + cols, i + 1) and the upper (i + cols, i + cols + 1, i + 1),
       // as cloth_mesh.hpp lists them: cell k's are triangles 2k and 2k + 1.
       for (int upper = 0; upper < 2; ++upper) {
-        const RunOfCells run{upper ? bottom : top, upper ? bottom + 1 : bottom, top + 1, count,
-                             2 * (r * cells + c) + upper};
-        if (!reuse) StoreNormals(*start_, run, &normal_start_);
-        StoreNormals(*end_, run, &normal_end_);
-        Eigen::Array<double, kRun, 1> curl;
-        curl.head(count) =
-            (moved(run.a, count) + moved(run.b, count)) * (moved(run.a, count) + moved(run.c, count));
-        for (int i = 0; i < count; ++i) normal_curl_[triangle_slot_[run.triangle + 2 * i]] = curl[i];
+        const RunOfCells run{upper ? bottom : top, upper ? bottom + 1 : bottom, top + 1, count};
+        // Where the run's first triangle of cell column dc of its patch goes.
+        const auto first = [&](int dc) {
+          const int slot = ((r % kPatchCells) * kPatchCells + dc) * 2 + upper;
+          return ((r / kPatchCells) * kSlots + slot) * lane_cols() + c / kPatchCells;
+        };
+        if (!reuse) StoreNormals(*start_, run, first, &normal_start_);
+        StoreNormals(*end_, run, first, &normal_end_);
+        const auto moved = [&](int node) { return moved_by_.array().segment(node, count); };
+        RunValues curl;
+        curl.head(count) = FloatAbove((moved(run.a) + moved(run.b)) * (moved(run.a) + moved(run.c)));
+        for (int dc = 0; dc < kPatchCells; ++dc) Deal(curl, count, dc, normal_curl_.data() + first(dc));
       }
     }
   });
 }
 
-void CollisionCulling::StoreNormals(const NodeRows& x, const RunOfCells& run, NormalRows* normals) const {
+// Every kPatchCells-th of a run's `count` values from the dc-th on, one after another into `to`.
+void CollisionCulling::Deal(const RunValues& values, int count, int dc, float* to) {
+  for (int i = dc; i < count; i += kPatchCells) *to++ = values[i];
+}
+
+template <typename SlotRow>
+void CollisionCulling::StoreNormals(const NodeRows& x, const RunOfCells& run, const SlotRow& first,
+                                    NormalRows* normals) const {
   const double *px = x.col(0).data(), *py = x.col(1).data(), *pz = x.col(2).data();
-  float n[3][kRun];
+  std::array<RunValues, 3> n;
 #pragma omp simd
   for (int i = 0; i < run.count; ++i) {
     const int a = run.a + i, b = run.b + i, c = run.c + i;
@@ -153,9 +172,8 @@ void CollisionCulling::StoreNormals(const NodeRows& x, const RunOfCells& run, No
     n[1][i] = float(uz * vx - ux * vz);
     n[2][i] = float(ux * vy - uy * vx);
   }
-  for (int i = 0; i < run.count; ++i) {
-    const int slot = triangle_slot_[run.triangle + 2 * i];
-    for (int k = 0; k < 3; ++k) (*normals)(slot, k) = n[k][i];
+  for (int dc = 0; dc < kPatchCells; ++dc) {
+    for (int k = 0; k < 3; ++k) Deal(n[k], run.count, dc, normals->col(k).data() + first(dc));
   }
 }
 
@@ -163,26 +181,32 @@ void CollisionCulling::StoreNormals(const NodeRows& x, const RunOfCells& run, No
 // normal over the step, and holds every triangle's normal n(t) = (1 - t) n0 + t n1 - t (1 - t)
 // du x dv at every moment t of the step, since n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and
 // |n(t)| <= max(|n0|, |n1|) + curl / 4. The least of n(t) . d / |n(t)| over the triangles is
-// the cone's cosine. With n0 and n1 kept in float, each bound gives up their rounding too
-// (kNormalRounding of the longer).
+// the cone's cosine. It is worked out in float, eight patches to a vector: each dot product,
+// square root and quotient is off by a few 2^-24 of the ratio's scale (Higham, "Accuracy and
+// Stability of Numerical Algorithms", 3.1), and so are the normals from their rounding and d
+// from a unit vector; kConeRounding, subtracted from the least, is many times all of them.
 void CollisionCulling::PatchCones(int block) {
-  using Lanes = Eigen::Array<double, kLanes, 1>;
+  using Lanes = Eigen::Array<float, kLanes, 1>;
   using Vector = std::array<Lanes, 3>;
-  const int first = block * kSlots * kLanes;  // the block's first slot
-  const auto normal = [first](const NormalRows& normals, int s) {
+  const int blocks_in_row = lane_cols() / kLanes, pr = block / blocks_in_row;
+  const int first_col = block % blocks_in_row * kLanes;
+  const auto row_of = [&](int s) { return (pr * kSlots + s) * lane_cols() + first_col; };
+  const auto normal = [&](const NormalRows& normals, int s) {
     Vector n;
-    for (int k = 0; k < 3; ++k)
-      n[k] = normals.col(k).segment<kLanes>(first + s * kLanes).template cast<double>();
+    for (int k = 0; k < 3; ++k) n[k] = normals.col(k).segment<kLanes>(row_of(s));
     return n;
   };
   const auto dot = [](const Vector& u, const Vector& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
   // The least each slot's ratio may be: -inf where the lane's patch has a triangle there, else
   // 1, so that an empty slot never lowers the cone.
+  const int cell_rows = int(start_->rows()) / cols_ - 1;
   std::array<Lanes, kSlots> slot_floor;
   for (int lane = 0; lane < kLanes; ++lane) {
-    const int p = block * kLanes + lane;
-    const int triangles = p < int(patches_.patches.size()) ? int(patches_.patches[p].triangles.size()) : 0;
-    for (int s = 0; s < kSlots; ++s) slot_floor[s][lane] = s < triangles ? -INFINITY : 1.0;
+    for (int s = 0; s < kSlots; ++s) {
+      const int cell_row = pr * kPatchCells + s / 2 / kPatchCells;
+      const int cell_col = (first_col + lane) * kPatchCells + s / 2 % kPatchCells;
+      slot_floor[s][lane] = cell_row < cell_rows && cell_col < cell_cols() ? -INFINITY : 1.0f;
+    }
   }
   Vector sum{Lanes::Zero(), Lanes::Zero(), Lanes::Zero()};
   for (int s = 0; s < kSlots; ++s) {
@@ -195,25 +219,26 @@ void CollisionCulling::PatchCones(int block) {
   for (int s = 0; s < kSlots; ++s) {
     const Vector n0 = normal(normal_start_, s), n1 = normal(normal_end_, s);
     const Lanes longest = dot(n0, n0).max(dot(n1, n1)).sqrt();
-    const Lanes curl = normal_curl_.segment<kLanes>(first + s * kLanes) / 4 + kNormalRounding * longest;
+    const Lanes curl = normal_curl_.segment<kLanes>(row_of(s)) / 4;
     const Lanes along = dot(n0, axis).min(dot(n1, axis)) - curl;
-    // At most 0 where a normal may turn 90 degrees; the least positive double keeps a degenerate
+    // At most 0 where a normal may turn 90 degrees; the least positive float keeps a degenerate
     // triangle (and an empty slot) from 0 / 0.
-    const Lanes ratio = along / (longest + curl + std::numeric_limits<double>::min());
+    const Lanes ratio = along / (longest + curl + std::numeric_limits<float>::min());
     least = least.min(ratio.max(slot_floor[s]));
   }
-  for (int lane = 0; lane < kLanes; ++lane) {
-    const int p = block * kLanes + lane;
-    if (p == int(patches_.patches.size())) break;
+  for (int lane = 0; lane < kLanes && first_col + lane < patch_cols(); ++lane) {
+    const int p = pr * patch_cols() + first_col + lane;
     NormalCone& cone = region_cone_[leaf_region_[p]];
+    const Point mean(sum[0][lane], sum[1][lane], sum[2][lane]);
     if (length[lane] == 0) {
       cone = {Point::UnitZ()};
       continue;
     }
-    cone = {Point(axis[0][lane], axis[1][lane], axis[2][lane])};
-    if (least[lane] > 0) {
-      cone.cos_half = least[lane];
-      cone.sin_half = std::sqrt((1 - least[lane]) * (1 + least[lane]));
+    cone = {mean.normalized()};
+    const double cos_half = double(least[lane]) - kConeRounding;
+    if (cos_half > 0) {
+      cone.cos_half = cos_half;
+      cone.sin_half = std::sqrt((1 - cos_half) * (1 + cos_half));
     }
   }
 }
@@ -224,20 +249,33 @@ void CollisionCulling::RegionBounds() {
   const std::vector<PatchRegion>& regions = patches_.regions;
   region_box_.resize(regions.size());
   region_cone_.resize(regions.size());
-  const int patches = int(patches_.patches.size());
-  ParallelFor((patches + kLanes - 1) / kLanes, threads_, [&](int block) {
+  const int patches = int(patches_.patches.size()), blocks_in_row = lane_cols() / kLanes;
+  ParallelFor(patches / patch_cols() * blocks_in_row, threads_, [&](int block) {
     PatchCones(block);
-    for (int p = block * kLanes; p < std::min(patches, (block + 1) * kLanes); ++p) {
+    const int row_start = block / blocks_in_row * patch_cols(), first_col = block % blocks_in_row * kLanes;
+    for (int p = row_start + first_col; p < row_start + std::min(patch_cols(), first_col + kLanes); ++p) {
       Box box = Box::Empty();
       for (int node : patches_.patches[p].nodes) box = box.Joined(node_box_[node]);
       region_box_[leaf_region_[p]] = box;
     }
   });
-  for (size_t r = 0; r < regions.size(); ++r) {
-    const PatchRegion& region = regions[r];
-    if (region.leaf()) continue;
-    region_box_[r] = region_box_[region.left].Joined(region_box_[region.right]);
-    region_cone_[r] = NormalCone::Union(region_cone_[region.left], region_cone_[region.right]);
+  // Level by level up the tree, ConeLanes::kLanes regions at a time.
+  for (size_t level = 0; level + 1 < level_starts_.size(); ++level) {
+    for (int first = level_starts_[level]; first < level_starts_[level + 1]; first += ConeLanes::kLanes) {
+      const int count = std::min(ConeLanes::kLanes, level_starts_[level + 1] - first);
+      ConeLanes left, right;
+      for (int lane = 0; lane < count; ++lane) {
+        const PatchRegion& region = regions[by_level_[first + lane]];
+        left.Set(lane, region_cone_[region.left]);
+        right.Set(lane, region_cone_[region.right]);
+      }
+      const ConeLanes both = ConeLanes::Union(left, right);
+      for (int lane = 0; lane < count; ++lane) {
+        const int r = by_level_[first + lane];
+        region_box_[r] = region_box_[regions[r].left].Joined(region_box_[regions[r].right]);
+        region_cone_[r] = both.Cone(lane);
+      }
+    }
   }
 }
 

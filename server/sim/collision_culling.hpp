@@ -47,7 +47,7 @@ class CollisionCulling {
   static constexpr int kPatchCells = 2;    ///< cells along a patch's side
   static constexpr int kNodeBlock = 1024;  ///< nodes a thread takes at a time
   /// Patches whose cones are worked out together, one to a lane of vector instructions.
-  static constexpr int kLanes = 4;
+  static constexpr int kLanes = 8;
   static constexpr int kSlots = 2 * kPatchCells * kPatchCells;  ///< triangles a patch has at most
 
   CollisionCulling(int cols, int rows);
@@ -87,16 +87,26 @@ class CollisionCulling {
   };
 
   void SweptBoxes();
-  /// Cells of a row at a time in TriangleNormals.
-  static constexpr int kRun = 64;
-  /// A run of `count` cells' lower or upper triangles: the first one's nodes, a, b and c, and
-  /// its index (ClothMesh); the rest follow a node and two triangles apart.
-  struct RunOfCells {
-    int a, b, c, count, triangle;
-  };
+  /// The cells' grid and the patches' over it.
+  int cell_cols() const { return cols_ - 1; }
+  int patch_cols() const { return (cell_cols() + kPatchCells - 1) / kPatchCells; }
+  /// Patch columns rounded up to whole blocks of kLanes.
+  int lane_cols() const { return (patch_cols() + kLanes - 1) / kLanes * kLanes; }
   void TriangleNormals(bool start_is_last_end);
-  /// The normals (b - a) x (c - a) of the run's triangles at positions `x`, into their slots.
-  void StoreNormals(const NodeRows& x, const RunOfCells& run, NormalRows* normals) const;
+  /// Cells of a row at a time in TriangleNormals (a multiple of kPatchCells).
+  static constexpr int kRun = 64;
+  using RunValues = Eigen::Array<float, kRun, 1>;
+  /// A run of `count` cells' lower or upper triangles: the first one's nodes, a, b and c; the
+  /// rest follow a node apart.
+  struct RunOfCells {
+    int a, b, c, count;
+  };
+  /// The normals (b - a) x (c - a) of the run's triangles at positions `x`, into their slots'
+  /// rows: those of the patches' cell column dc from row first(dc) on.
+  template <typename SlotRow>
+  void StoreNormals(const NodeRows& x, const RunOfCells& run, const SlotRow& first,
+                    NormalRows* normals) const;
+  static void Deal(const RunValues& values, int count, int dc, float* to);
   Box TriangleBox(int triangle) const;
   Box EdgeBox(int edge) const;
   /// A primitive of one patch inside another's box, and its own box.
@@ -118,6 +128,9 @@ class CollisionCulling {
   ClothMesh mesh_;
   ClothPatches patches_;
   std::vector<int> leaf_region_;  ///< each patch's region
+  /// The regions above the leaves, by height over their deepest leaf: those of height k from
+  /// by_level_[level_starts_[k - 1]] on, each with its halves lower down.
+  std::vector<int> by_level_, level_starts_;
 
   // The step being culled (valid during Find).
   const NodeRows* start_ = nullptr;
@@ -133,13 +146,12 @@ class CollisionCulling {
   Eigen::VectorXd moved_by_;             ///< m, per node, |x1 - x0|
   // Per triangle, by patch: its normal (unnormalised, m^2) at the step's start and end, kept in
   // float (collision_culling.cpp says how the cones allow for it), and curl >= |du x dv|, which
-  // bounds how far the normal strays between them. Patches go kLanes to a block and a block has
-  // kSlots slots of kLanes rows, a patch's triangles in its lane: slot s of block b holds, in
-  // lane l, the s-th triangle of patch b kLanes + l (in ClothMesh order). Vectors of kLanes
-  // patches' values are contiguous.
-  std::vector<int> triangle_slot_;  ///< per triangle (ClothMesh order): its row below
+  // bounds how far the normal strays between them. A patch's triangles in ClothMesh order fill
+  // its slots 0 to kSlots - 1; slot s of the patch in row pr and column pc is row
+  // (pr kSlots + s) lane_cols() + pc, so the same slot of a row's patches is contiguous. A slot
+  // whose triangle lies past the flag's edge (a patch cut short) stays zero.
   NormalRows normal_start_, normal_end_;
-  Eigen::ArrayXd normal_curl_;
+  Eigen::ArrayXf normal_curl_;
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
   std::vector<std::vector<PrimitivePair>> pair_candidates_;  ///< per patch pair, its candidates
   std::vector<std::vector<Near>>

@@ -36,20 +36,46 @@ ConeSum Sum(const NormalCone& a, const NormalCone& b) {
 
 }  // namespace
 
-// With beta the angle between the axes and ta, tb the half-angles: if one cone holds the other,
-// the union is that one; else its half-angle is s / 2 with s = beta + ta + tb, narrow only when
-// s is under 180 degrees, and its axis turns from a's towards b's by s / 2 - ta. Halved by
-// cos^2(s / 2) = (1 + cos s) / 2: square roots only.
 NormalCone NormalCone::Union(const NormalCone& a, const NormalCone& b) {
-  const ConeSum sum = Sum(a, b);
-  if (sum.holder != nullptr) return *sum.holder;
-  if (sum.sin_s <= 0) return {a.axis};  // s in [180, 360) degrees, or either cone was not narrow
-  // s / 2, and the turn s / 2 - ta; the axis is sin(beta - turn) a + sin(turn) b over sin(beta),
-  // its length (as in spherical interpolation).
-  const double ch = std::sqrt((1 + sum.cos_s) / 2), sh = std::sqrt((1 - sum.cos_s) / 2);
-  const double st = sh * a.cos_half - ch * a.sin_half, ct = ch * a.cos_half + sh * a.sin_half;
-  const Point axis = (sum.sin_beta * ct - sum.cos_beta * st) * a.axis + st * b.axis;
-  return {axis / sum.sin_beta, ch, sh};
+  ConeLanes first, second;
+  first.Set(0, a);
+  second.Set(0, b);
+  return ConeLanes::Union(first, second).Cone(0);
+}
+
+// With beta the angle between the axes and ta, tb the half-angles (Sum above): if one cone holds
+// the other, the union is that one; else its half-angle is s / 2 with s = beta + ta + tb, narrow
+// only when s is under 180 degrees, and its axis turns from a's towards b's by s / 2 - ta: it is
+// sin(beta - turn) a + sin(turn) b over sin(beta), its length (as in spherical interpolation).
+// Halved by cos^2(s / 2) = (1 + cos s) / 2: square roots only. Every case is worked out in every
+// lane and the lane's own picked, so that the loop is a run of vector instructions.
+ConeLanes ConeLanes::Union(const ConeLanes& a, const ConeLanes& b) {
+  ConeLanes out;
+#pragma omp simd
+  for (int i = 0; i < kLanes; ++i) {
+    const double ac = a.cos_half[i], as = a.sin_half[i], bc = b.cos_half[i], bs = b.sin_half[i];
+    const double cb = std::clamp(a.x[i] * b.x[i] + a.y[i] * b.y[i] + a.z[i] * b.z[i], -1.0, 1.0);
+    const double sb = std::sqrt((1 - cb) * (1 + cb));
+    // Bitwise & and |: no branches in the loop.
+    const bool narrow = (ac > 0) & (bc > 0);
+    const bool a_holds = narrow & (cb * bc - sb * bs >= ac);
+    const bool b_holds = narrow & !a_holds & (cb * ac - sb * as >= bc);
+    const double c1 = cb * ac - sb * as, s1 = sb * ac + cb * as;  // beta + ta
+    const double cos_s = c1 * bc - s1 * bs, sin_s = s1 * bc + c1 * bs;
+    const bool joined = narrow & !a_holds & !b_holds & (sin_s > 0);
+    const double ch = std::sqrt(std::max(0.0, (1 + cos_s) / 2)),
+                 sh = std::sqrt(std::max(0.0, (1 - cos_s) / 2));
+    const double st = sh * ac - ch * as, ct = ch * ac + sh * as;
+    const double wa = sb * ct - cb * st;
+    const double jx = (wa * a.x[i] + st * b.x[i]) / sb, jy = (wa * a.y[i] + st * b.y[i]) / sb,
+                 jz = (wa * a.z[i] + st * b.z[i]) / sb;
+    out.x[i] = a_holds ? a.x[i] : b_holds ? b.x[i] : joined ? jx : a.x[i];
+    out.y[i] = a_holds ? a.y[i] : b_holds ? b.y[i] : joined ? jy : a.y[i];
+    out.z[i] = a_holds ? a.z[i] : b_holds ? b.z[i] : joined ? jz : a.z[i];
+    out.cos_half[i] = a_holds ? ac : b_holds ? bc : joined ? ch : -1.0;
+    out.sin_half[i] = a_holds ? as : b_holds ? bs : joined ? sh : 0.0;
+  }
+  return out;
 }
 
 bool NormalCone::NarrowTogether(const NormalCone& a, const NormalCone& b) {

@@ -4,6 +4,8 @@
 // normal-cone criterion): self-collision culls such regions of the cloth (self_collision.hpp).
 #pragma once
 
+#include <array>
+
 #include "server/sim/collision_geometry.hpp"
 
 namespace flagsim::sim {
@@ -18,6 +20,27 @@ struct NormalCone {
   static NormalCone Union(const NormalCone& a, const NormalCone& b);
   /// Union(a, b).Narrow(), without the union's axis.
   static bool NarrowTogether(const NormalCone& a, const NormalCone& b);
+};
+
+/// kLanes cones side by side, each quantity of them contiguous, so that the unions of kLanes
+/// pairs are worked out together by vector instructions (ConeLanes::Union).
+struct ConeLanes {
+  static constexpr int kLanes = 4;
+  std::array<double, kLanes> x{}, y{}, z{}, cos_half{}, sin_half{};
+
+  ConeLanes() { cos_half.fill(-1); }
+  NormalCone Cone(int lane) const {
+    return {Point(x[lane], y[lane], z[lane]), cos_half[lane], sin_half[lane]};
+  }
+  void Set(int lane, const NormalCone& cone) {
+    x[lane] = cone.axis.x();
+    y[lane] = cone.axis.y();
+    z[lane] = cone.axis.z();
+    cos_half[lane] = cone.cos_half;
+    sin_half[lane] = cone.sin_half;
+  }
+  /// NormalCone::Union of each lane's pair, the same to the last bit.
+  static ConeLanes Union(const ConeLanes& a, const ConeLanes& b);
 };
 
 }  // namespace flagsim::sim
