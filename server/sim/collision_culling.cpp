@@ -385,9 +385,9 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
     const Box box = TriangleBox(t);
     if (!box.Overlaps(near_box)) continue;
     for (const Near& node : *near) {
-      if (mesh_.HasCorner(t, node.index) || !node.box.Overlaps(box)) continue;
+      if (!node.box.Overlaps(box) || mesh_.HasCorner(t, node.index)) continue;
       const PrimitivePair pair{false, node.index, t};
-      if (!Immobile(pair) && !Parted(pair)) found->push_back(pair);
+      if (!Parted(pair) && !Immobile(pair)) found->push_back(pair);
     }
   }
   if (p > q) return;
@@ -399,9 +399,9 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
     if (!box.Overlaps(near_box)) continue;
     for (const Near& edge : *near) {
       const int e = edge.index;
-      if ((p == q && f <= e) || mesh_.Adjacent(e, f) || !edge.box.Overlaps(box)) continue;
+      if ((p == q && f <= e) || !edge.box.Overlaps(box) || mesh_.Adjacent(e, f)) continue;
       const PrimitivePair pair{true, std::min(e, f), std::max(e, f)};
-      if (!Immobile(pair) && !Parted(pair)) found->push_back(pair);
+      if (!Parted(pair) && !Immobile(pair)) found->push_back(pair);
     }
   }
 }

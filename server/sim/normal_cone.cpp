@@ -4,37 +4,20 @@
 #include <cmath>
 
 namespace flagsim::sim {
-namespace {
 
-/// Two narrow cones' angles summed, in cosines and sines: the angle beta between the axes; the
-/// cone that holds the other, if one does; else s = beta + ta + tb. With either cone open, s is
-/// reported as 180 degrees.
-struct ConeSum {
-  const NormalCone* holder = nullptr;
-  double cos_beta = 1, sin_beta = 0, cos_s = -1, sin_s = 0;
-};
-
-// x holds y when beta + ty <= tx: as beta + ty < 270 degrees and tx < 90, cosines decide. The
-// angles add by cos(x + y) = cx cy - sx sy and sin(x + y) = sx cy + cx sy: no inverse
-// trigonometry.
-ConeSum Sum(const NormalCone& a, const NormalCone& b) {
-  ConeSum sum;
-  if (!a.Narrow() || !b.Narrow()) return sum;
+// Angles in cosines and sines: beta between the axes, ta and tb the half-angles. x holds y when
+// beta + ty <= tx: as beta + ty < 270 degrees and tx < 90, cosines decide. The angles add by
+// cos(x + y) = cx cy - sx sy and sin(x + y) = sx cy + cx sy: no inverse trigonometry.
+//
+// Two narrow cones are narrow together when one holds the other, or else when s = beta + ta + tb
+// is under 180 degrees (sin s > 0).
+bool NormalCone::NarrowCones(const NormalCone& a, const NormalCone& b) {
   const double cb = std::clamp(a.axis.dot(b.axis), -1.0, 1.0), sb = std::sqrt((1 - cb) * (1 + cb));
-  sum.cos_beta = cb;
-  sum.sin_beta = sb;
-  const auto holds = [cb, sb](const NormalCone& x, const NormalCone& y) {
-    return cb * y.cos_half - sb * y.sin_half >= x.cos_half;
-  };
-  sum.holder = holds(a, b) ? &a : holds(b, a) ? &b : nullptr;
-  if (sum.holder != nullptr) return sum;
+  if (cb * b.cos_half - sb * b.sin_half >= a.cos_half) return true;                             // a holds b
+  if (cb * a.cos_half - sb * a.sin_half >= b.cos_half) return true;                             // b holds a
   const double c1 = cb * a.cos_half - sb * a.sin_half, s1 = sb * a.cos_half + cb * a.sin_half;  // beta + ta
-  sum.cos_s = c1 * b.cos_half - s1 * b.sin_half;
-  sum.sin_s = s1 * b.cos_half + c1 * b.sin_half;
-  return sum;
+  return s1 * b.cos_half + c1 * b.sin_half > 0;
 }
-
-}  // namespace
 
 NormalCone NormalCone::Union(const NormalCone& a, const NormalCone& b) {
   ConeLanes first, second;
@@ -43,12 +26,12 @@ NormalCone NormalCone::Union(const NormalCone& a, const NormalCone& b) {
   return ConeLanes::Union(first, second).Cone(0);
 }
 
-// With beta the angle between the axes and ta, tb the half-angles (Sum above): if one cone holds
-// the other, the union is that one; else its half-angle is s / 2 with s = beta + ta + tb, narrow
-// only when s is under 180 degrees, and its axis turns from a's towards b's by s / 2 - ta: it is
-// sin(beta - turn) a + sin(turn) b over sin(beta), its length (as in spherical interpolation).
-// Halved by cos^2(s / 2) = (1 + cos s) / 2: square roots only. Every case is worked out in every
-// lane and the lane's own picked, so that the loop is a run of vector instructions.
+// As in NarrowCones: if one cone holds the other, the union is that one; else its half-angle is
+// s / 2, narrow only when s is under 180 degrees, and its axis turns from a's towards b's by
+// s / 2 - ta: it is sin(beta - turn) a + sin(turn) b over sin(beta), its length (as in spherical
+// interpolation). Halved by cos^2(s / 2) = (1 + cos s) / 2: square roots only. Every case is
+// worked out in every lane and the lane's own picked, so that the loop is a run of vector
+// instructions.
 ConeLanes ConeLanes::Union(const ConeLanes& a, const ConeLanes& b) {
   ConeLanes out;
 #pragma omp simd
@@ -56,7 +39,7 @@ ConeLanes ConeLanes::Union(const ConeLanes& a, const ConeLanes& b) {
     const double ac = a.cos_half[i], as = a.sin_half[i], bc = b.cos_half[i], bs = b.sin_half[i];
     const double cb = std::clamp(a.x[i] * b.x[i] + a.y[i] * b.y[i] + a.z[i] * b.z[i], -1.0, 1.0);
     const double sb = std::sqrt((1 - cb) * (1 + cb));
-    // Bitwise & and |: no branches in the loop.
+    // Bitwise & : no branches in the loop.
     const bool narrow = (ac > 0) & (bc > 0);
     const bool a_holds = narrow & (cb * bc - sb * bs >= ac);
     const bool b_holds = narrow & !a_holds & (cb * ac - sb * as >= bc);
@@ -69,6 +52,7 @@ ConeLanes ConeLanes::Union(const ConeLanes& a, const ConeLanes& b) {
     const double wa = sb * ct - cb * st;
     const double jx = (wa * a.x[i] + st * b.x[i]) / sb, jy = (wa * a.y[i] + st * b.y[i]) / sb,
                  jz = (wa * a.z[i] + st * b.z[i]) / sb;
+    // Else open (any direction), about a's axis.
     out.x[i] = a_holds ? a.x[i] : b_holds ? b.x[i] : joined ? jx : a.x[i];
     out.y[i] = a_holds ? a.y[i] : b_holds ? b.y[i] : joined ? jy : a.y[i];
     out.z[i] = a_holds ? a.z[i] : b_holds ? b.z[i] : joined ? jz : a.z[i];
@@ -76,11 +60,6 @@ ConeLanes ConeLanes::Union(const ConeLanes& a, const ConeLanes& b) {
     out.sin_half[i] = a_holds ? as : b_holds ? bs : joined ? sh : 0.0;
   }
   return out;
-}
-
-bool NormalCone::NarrowTogether(const NormalCone& a, const NormalCone& b) {
-  const ConeSum sum = Sum(a, b);
-  return sum.holder != nullptr ? sum.holder->Narrow() : sum.sin_s > 0;
 }
 
 }  // namespace flagsim::sim

@@ -19,7 +19,13 @@ struct NormalCone {
   /// The smallest cone holding both (normal_cone.cpp); any direction when that is not narrow.
   static NormalCone Union(const NormalCone& a, const NormalCone& b);
   /// Union(a, b).Narrow(), without the union's axis.
-  static bool NarrowTogether(const NormalCone& a, const NormalCone& b);
+  static bool NarrowTogether(const NormalCone& a, const NormalCone& b) {
+    return a.Narrow() && b.Narrow() && NarrowCones(a, b);
+  }
+
+ private:
+  /// NarrowTogether of two narrow cones.
+  static bool NarrowCones(const NormalCone& a, const NormalCone& b);
 };
 
 /// kLanes cones side by side, each quantity of them contiguous, so that the unions of kLanes
