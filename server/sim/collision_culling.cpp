@@ -83,19 +83,29 @@ void CollisionCulling::SweptBoxes() {
   moved_by_.resize(nodes);
   ParallelFor((nodes + kNodeBlock - 1) / kNodeBlock, threads_, [&](int block) {
     const int first = block * kNodeBlock, count = std::min(nodes - first, kNodeBlock);
-    const auto x0 = start_->middleRows(first, count), x1 = end_->middleRows(first, count);
-    const auto d = x1 - x0;
-    moved_by_.segment(first, count) = (d.col(0).square() + d.col(1).square() + d.col(2).square()).sqrt();
-    Eigen::Array<float, kNodeBlock, 3> lo, hi;
-    Eigen::Array<double, kNodeBlock, 3> centre;
+    std::array<const double*, 3> x0, x1;
     for (int k = 0; k < 3; ++k) {
-      lo.col(k).head(count) = FloatBelow(x0.col(k).min(x1.col(k)) - grow);
-      hi.col(k).head(count) = FloatAbove(x0.col(k).max(x1.col(k)) + grow);
-      centre.col(k).head(count) = (x0.col(k) + x1.col(k)) / 2;
+      x0[k] = start_->col(k).data() + first;
+      x1[k] = end_->col(k).data() + first;
+    }
+    float lo[3][kNodeBlock], hi[3][kNodeBlock];
+    double centre[3][kNodeBlock], moved[kNodeBlock];
+#pragma omp simd
+    for (int i = 0; i < count; ++i) {
+      double moved_squared = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double a = x0[k][i], b = x1[k][i], least = std::min(a, b) - grow, most = std::max(a, b) + grow;
+        lo[k][i] = float(least - (std::abs(least) * kRoundingShare + kRoundingLeast));
+        hi[k][i] = float(most + (std::abs(most) * kRoundingShare + kRoundingLeast));
+        centre[k][i] = (a + b) / 2;
+        moved_squared += (b - a) * (b - a);
+      }
+      moved[i] = std::sqrt(moved_squared);
     }
     for (int i = 0; i < count; ++i) {
-      node_box_[first + i] = {{lo(i, 0), lo(i, 1), lo(i, 2), 0.0f}, {hi(i, 0), hi(i, 1), hi(i, 2), 0.0f}};
-      node_path_[first + i] = {centre.row(i).transpose().matrix(), moved_by_[first + i] / 2};
+      moved_by_[first + i] = moved[i];
+      node_box_[first + i] = {{lo[0][i], lo[1][i], lo[2][i], 0.0f}, {hi[0][i], hi[1][i], hi[2][i], 0.0f}};
+      node_path_[first + i] = {Point(centre[0][i], centre[1][i], centre[2][i]), moved[i] / 2};
     }
   });
 }
