@@ -239,12 +239,11 @@ void CollisionCulling::PatchCones(int block) {
   for (int lane = 0; lane < kLanes && first_col + lane < patch_cols(); ++lane) {
     const int p = pr * patch_cols() + first_col + lane;
     NormalCone& cone = region_cone_[leaf_region_[p]];
-    const Point mean(sum[0][lane], sum[1][lane], sum[2][lane]);
     if (length[lane] == 0) {
       cone = {Point::UnitZ()};
       continue;
     }
-    cone = {mean.normalized()};
+    cone = {Point(sum[0][lane], sum[1][lane], sum[2][lane]).normalized()};
     const double cos_half = double(least[lane]) - kConeRounding;
     if (cos_half > 0) {
       cone.cos_half = cos_half;

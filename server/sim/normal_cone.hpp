@@ -45,7 +45,8 @@ struct ConeLanes {
     cos_half[lane] = cone.cos_half;
     sin_half[lane] = cone.sin_half;
   }
-  /// NormalCone::Union of each lane's pair, the same to the last bit.
+  /// The union of each lane's pair (NormalCone::Union is this with one lane); unused lanes are
+  /// open cones.
   static ConeLanes Union(const ConeLanes& a, const ConeLanes& b);
 };
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -45,6 +46,29 @@ TEST(NormalCone, TheUnionHoldsBothAndIsNoWiderThanItMustBe) {
     EXPECT_NEAR(HalfAngle(both), expected, 1e-9);
   }
   EXPECT_GT(narrow, 200);  // the trials reached the narrow case often
+}
+
+TEST(NormalCone, LanesAreJoinedEachOnItsOwn) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1, 1), angle(0.01, 1.4);
+  for (int trial = 0; trial < 200; ++trial) {
+    ConeLanes a, b;
+    std::array<NormalCone, ConeLanes::kLanes> alone;
+    for (int lane = 0; lane < ConeLanes::kLanes; ++lane) {
+      const NormalCone x = ConeOf({unit(random), unit(random), unit(random)}, angle(random));
+      const NormalCone y = ConeOf({unit(random), unit(random), unit(random)}, angle(random));
+      a.Set(lane, x);
+      b.Set(lane, y);
+      alone[lane] = NormalCone::Union(x, y);
+    }
+    const ConeLanes both = ConeLanes::Union(a, b);
+    for (int lane = 0; lane < ConeLanes::kLanes; ++lane) {
+      const NormalCone cone = both.Cone(lane);
+      EXPECT_EQ(cone.axis, alone[lane].axis);
+      EXPECT_EQ(cone.cos_half, alone[lane].cos_half);
+      EXPECT_EQ(cone.sin_half, alone[lane].sin_half);
+    }
+  }
 }
 
 TEST(NormalCone, ACommonAxisGivesTheWiderAndOppositeAxesNothingNarrow) {
