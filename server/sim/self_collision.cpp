@@ -65,6 +65,8 @@ bool SelfCollision<Real>::Resolve(const ClothModel<Real>& model, const SimParams
       stats_.candidates = int(candidates().size());
       if (candidates().empty()) return false;
       Proximity();
+    } else {
+      start_gap_.clear();  // Proximity's gaps are of the first round's candidates
     }
     const bool hold = round >= kImpulseRounds;
     const int held_before = stats_.held;
@@ -148,14 +150,17 @@ void SelfCollision<Real>::ForEachCandidate(std::vector<std::vector<Found>>* bloc
 // parallel; the impulses follow in the candidates' order.
 template <typename Real>
 void SelfCollision<Real>::Proximity() {
+  start_gap_.resize(candidates().size());
   ForEachCandidate(&proximate_blocks_, &proximate_, [this](int c, std::vector<Proximate>* found) {
     const PrimitivePair& pair = candidates()[c];
     const std::array<int, 4> n = Nodes(pair);
     const std::array<Point, 4> start{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])};
+    start_gap_[c] = thickness_;
     if (ApartAlongAnAxis(pair.edges ? 2 : 1, start, thickness_)) return;
     const std::array<double, 4> k = ClosestWeights(pair.edges, start);
     const Point gap = Gap(k, start);
     const double distance = gap.norm();
+    start_gap_[c] = distance;
     if (distance >= thickness_ || distance == 0) return;
     found->push_back({c, k, gap / distance, 0.1 * (thickness_ - distance) / dt_});
   });
@@ -163,11 +168,20 @@ void SelfCollision<Real>::Proximity() {
     Push(Nodes(candidates()[close.candidate]), close.k, close.normal, close.speed);
 }
 
-// When the pair's straight paths from start to end meet within the step, if they do.
+// When the pair's straight paths from start to end meet within the step, if they do. A point of
+// a primitive moves by at most the most any of its nodes moves, so the primitives stay at least
+// their start gap less the two primitives' largest moves apart: when that is more than the
+// tolerance, they cannot meet (most pairs of a fold's two layers, which lie near each other).
 template <typename Real>
-std::optional<double> SelfCollision<Real>::ContactTime(const PrimitivePair& pair,
-                                                       const std::array<int, 4>& n) const {
+std::optional<double> SelfCollision<Real>::ContactTime(int candidate, const std::array<int, 4>& n) const {
+  const PrimitivePair& pair = candidates()[candidate];
   const double tolerance = kContactTolerance * thickness_;
+  if (candidate < int(start_gap_.size())) {
+    const double first = std::max(Moved(n[0]), pair.edges ? Moved(n[1]) : 0.0);
+    const double rest = std::max({pair.edges ? 0.0 : Moved(n[1]), Moved(n[2]), Moved(n[3])});
+    // The gap found is off the true one by rounding at most: a margin for it.
+    if (start_gap_[candidate] - first - rest > tolerance * (1 + kGapMargin)) return std::nullopt;
+  }
   const Primitives points = PathsOf(n);
   return pair.edges ? EdgeEdgeContact(points, tolerance) : PointTriangleContact(points, tolerance);
 }
@@ -183,7 +197,7 @@ int SelfCollision<Real>::Contacts(bool hold) {
   ForEachCandidate(&hit_blocks_, &hits_, [this](int c, std::vector<Hit>* found) {
     const std::array<int, 4> n = Nodes(candidates()[c]);
     if (Immobile(n)) return;
-    if (const std::optional<double> when = ContactTime(candidates()[c], n)) found->push_back({c, *when});
+    if (const std::optional<double> when = ContactTime(c, n)) found->push_back({c, *when});
   });
   touched_.assign(start_.rows(), false);
   const auto touched = [this](const std::array<int, 4>& n) {
@@ -198,7 +212,7 @@ int SelfCollision<Real>::Contacts(bool hold) {
     if (hit_at_start) ++next_hit;
     const std::array<int, 4> n = Nodes(pair);
     if (Immobile(n)) continue;
-    const std::optional<double> when = touched(n) ? ContactTime(pair, n) : at_start;
+    const std::optional<double> when = touched(n) ? ContactTime(c, n) : at_start;
     if (!when) continue;
     if (hold) {
       for (int node : n) Hold(node);

@@ -111,7 +111,9 @@ class SelfCollision {
     int candidate = 0;
     double when = 0;
   };
-  std::optional<double> ContactTime(const PrimitivePair& pair, const std::array<int, 4>& nodes) const;
+  std::optional<double> ContactTime(int candidate, const std::array<int, 4>& nodes) const;
+  /// Of the tolerance: room for the rounding of a start gap (ContactTime).
+  static constexpr double kGapMargin = 1e-6;
   int Contacts(bool hold);
   bool HoldThoseInObstacles();
   bool Immobile(const std::array<int, 4>& nodes) const;
@@ -122,6 +124,7 @@ class SelfCollision {
   Point End(int node) const { return Row(end_, node); }
   static Point Row(const NodeRows& rows, int i) { return rows.row(i).transpose().matrix(); }
   Point Velocity(int node) const { return (End(node) - Start(node)) / dt_; }
+  double Moved(int node) const { return (End(node) - Start(node)).norm(); }
   /// The nodes' straight paths over the step.
   Primitives PathsOf(const std::array<int, 4>& n) const {
     return {{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])},
@@ -147,6 +150,9 @@ class SelfCollision {
   std::vector<std::vector<Hit>> hit_blocks_;
   std::vector<Hit> hits_;      ///< contacts as the ends stood when the pass began, in order
   std::vector<char> touched_;  ///< per node: moved by an impulse or held in this pass
+  /// Per candidate of the first round: the distance between its primitives at the start as
+  /// Proximity found it, or h where an axis parts them by more.
+  std::vector<double> start_gap_;
   SelfCollisionStats stats_;
 };
 
