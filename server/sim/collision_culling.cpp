@@ -27,6 +27,8 @@ template <typename Values>
 auto FloatAbove(const Values& y) {
   return (y + (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
 }
+float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
+float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
 
 }  // namespace
 
@@ -94,9 +96,9 @@ void CollisionCulling::SweptBoxes() {
     for (int i = 0; i < count; ++i) {
       double moved_squared = 0;
       for (int k = 0; k < 3; ++k) {
-        const double a = x0[k][i], b = x1[k][i], least = std::min(a, b) - grow, most = std::max(a, b) + grow;
-        lo[k][i] = float(least - (std::abs(least) * kRoundingShare + kRoundingLeast));
-        hi[k][i] = float(most + (std::abs(most) * kRoundingShare + kRoundingLeast));
+        const double a = x0[k][i], b = x1[k][i];
+        lo[k][i] = FloatBelow(std::min(a, b) - grow);
+        hi[k][i] = FloatAbove(std::max(a, b) + grow);
         centre[k][i] = (a + b) / 2;
         moved_squared += (b - a) * (b - a);
       }
@@ -130,8 +132,7 @@ CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
 // ended (one pass after another, no contact between), the start normals are the last end
 // normals.
 void CollisionCulling::TriangleNormals(bool start_is_last_end) {
-  const int cell_rows = int(start_->rows()) / cols_ - 1;
-  const int patch_rows = (cell_rows + kPatchCells - 1) / kPatchCells;
+  const int patch_rows = (cell_rows() + kPatchCells - 1) / kPatchCells;
   const int slots = patch_rows * kSlots * lane_cols();
   const bool reuse = start_is_last_end && normal_end_.rows() == slots;
   if (reuse) normal_start_.swap(normal_end_);
@@ -140,7 +141,7 @@ void CollisionCulling::TriangleNormals(bool start_is_last_end) {
     normal_end_.setZero(slots, 3);
     normal_curl_.setZero(slots);
   }
-  ParallelFor(cell_rows, threads_, [&](int r) {
+  ParallelFor(cell_rows(), threads_, [&](int r) {
     for (int c = 0; c < cell_cols(); c += kRun) {
       const int count = std::min(kRun, cell_cols() - c), top = r * cols_ + c, bottom = top + cols_;
       // The lower triangles (i, i + cols, i + 1) and the upper (i + cols, i + cols + 1, i + 1),
@@ -209,13 +210,12 @@ void CollisionCulling::PatchCones(int block) {
   const auto dot = [](const Vector& u, const Vector& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
   // The least each slot's ratio may be: -inf where the lane's patch has a triangle there, else
   // 1, so that an empty slot never lowers the cone.
-  const int cell_rows = int(start_->rows()) / cols_ - 1;
   std::array<Lanes, kSlots> slot_floor;
   for (int lane = 0; lane < kLanes; ++lane) {
     for (int s = 0; s < kSlots; ++s) {
       const int cell_row = pr * kPatchCells + s / 2 / kPatchCells;
       const int cell_col = (first_col + lane) * kPatchCells + s / 2 % kPatchCells;
-      slot_floor[s][lane] = cell_row < cell_rows && cell_col < cell_cols() ? -INFINITY : 1.0f;
+      slot_floor[s][lane] = cell_row < cell_rows() && cell_col < cell_cols() ? -INFINITY : 1.0f;
     }
   }
   Vector sum{Lanes::Zero(), Lanes::Zero(), Lanes::Zero()};

@@ -89,6 +89,7 @@ class CollisionCulling {
   void SweptBoxes();
   /// The cells' grid and the patches' over it.
   int cell_cols() const { return cols_ - 1; }
+  int cell_rows() const { return int(start_->rows()) / cols_ - 1; }  ///< of the step being culled
   int patch_cols() const { return (cell_cols() + kPatchCells - 1) / kPatchCells; }
   /// Patch columns rounded up to whole blocks of kLanes.
   int lane_cols() const { return (patch_cols() + kLanes - 1) / kLanes * kLanes; }
