@@ -132,8 +132,7 @@ CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
 // ended (one pass after another, no contact between), the start normals are the last end
 // normals.
 void CollisionCulling::TriangleNormals(bool start_is_last_end) {
-  const int patch_rows = (cell_rows() + kPatchCells - 1) / kPatchCells;
-  const int slots = patch_rows * kSlots * lane_cols();
+  const int slots = patch_rows() * kSlots * lane_cols();
   const bool reuse = start_is_last_end && normal_end_.rows() == slots;
   if (reuse) normal_start_.swap(normal_end_);
   if (normal_curl_.rows() != slots) {  // slots that no triangle fills stay zero
@@ -196,11 +195,9 @@ void CollisionCulling::StoreNormals(const NodeRows& x, const RunOfCells& run, co
 // square root and quotient is off by a few 2^-24 of the ratio's scale (Higham, "Accuracy and
 // Stability of Numerical Algorithms", 3.1), and so are the normals from their rounding and d
 // from a unit vector; kConeRounding, subtracted from the least, is many times all of them.
-void CollisionCulling::PatchCones(int block) {
+void CollisionCulling::PatchCones(int pr, int first_col) {
   using Lanes = Eigen::Array<float, kLanes, 1>;
   using Vector = std::array<Lanes, 3>;
-  const int blocks_in_row = lane_cols() / kLanes, pr = block / blocks_in_row;
-  const int first_col = block % blocks_in_row * kLanes;
   const auto row_of = [&](int s) { return (pr * kSlots + s) * lane_cols() + first_col; };
   const auto normal = [&](const NormalRows& normals, int s) {
     Vector n;
@@ -258,10 +255,11 @@ void CollisionCulling::RegionBounds() {
   const std::vector<PatchRegion>& regions = patches_.regions;
   region_box_.resize(regions.size());
   region_cone_.resize(regions.size());
-  const int patches = int(patches_.patches.size()), blocks_in_row = lane_cols() / kLanes;
-  ParallelFor(patches / patch_cols() * blocks_in_row, threads_, [&](int block) {
-    PatchCones(block);
-    const int row_start = block / blocks_in_row * patch_cols(), first_col = block % blocks_in_row * kLanes;
+  const int blocks_in_row = lane_cols() / kLanes;
+  ParallelFor(patch_rows() * blocks_in_row, threads_, [&](int block) {
+    const int pr = block / blocks_in_row, first_col = block % blocks_in_row * kLanes;
+    PatchCones(pr, first_col);
+    const int row_start = pr * patch_cols();
     for (int p = row_start + first_col; p < row_start + std::min(patch_cols(), first_col + kLanes); ++p) {
       Box box = Box::Empty();
       for (int node : patches_.patches[p].nodes) box = box.Joined(node_box_[node]);

@@ -91,6 +91,7 @@ class CollisionCulling {
   int cell_cols() const { return cols_ - 1; }
   int cell_rows() const { return int(start_->rows()) / cols_ - 1; }  ///< of the step being culled
   int patch_cols() const { return (cell_cols() + kPatchCells - 1) / kPatchCells; }
+  int patch_rows() const { return (cell_rows() + kPatchCells - 1) / kPatchCells; }
   /// Patch columns rounded up to whole blocks of kLanes.
   int lane_cols() const { return (patch_cols() + kLanes - 1) / kLanes * kLanes; }
   void TriangleNormals(bool start_is_last_end);
@@ -115,7 +116,8 @@ class CollisionCulling {
     int index;
     Box box;
   };
-  void PatchCones(int block);
+  /// The leaf cones of patch row `pr`'s kLanes patches from column `first_col` on.
+  void PatchCones(int pr, int first_col);
   void RegionBounds();
   void SelfPairs(int region);
   void CrossPairs(int a, int b);

@@ -13,9 +13,9 @@ namespace flagsim::sim {
 // is under 180 degrees (sin s > 0).
 bool NormalCone::NarrowCones(const NormalCone& a, const NormalCone& b) {
   const double cb = std::clamp(a.axis.dot(b.axis), -1.0, 1.0), sb = std::sqrt((1 - cb) * (1 + cb));
-  if (cb * b.cos_half - sb * b.sin_half >= a.cos_half) return true;                             // a holds b
-  if (cb * a.cos_half - sb * a.sin_half >= b.cos_half) return true;                             // b holds a
   const double c1 = cb * a.cos_half - sb * a.sin_half, s1 = sb * a.cos_half + cb * a.sin_half;  // beta + ta
+  if (cb * b.cos_half - sb * b.sin_half >= a.cos_half) return true;                             // a holds b
+  if (c1 >= b.cos_half) return true;                                                            // b holds a
   return s1 * b.cos_half + c1 * b.sin_half > 0;
 }
 
@@ -41,9 +41,9 @@ ConeLanes ConeLanes::Union(const ConeLanes& a, const ConeLanes& b) {
     const double sb = std::sqrt((1 - cb) * (1 + cb));
     // Bitwise & : no branches in the loop.
     const bool narrow = (ac > 0) & (bc > 0);
-    const bool a_holds = narrow & (cb * bc - sb * bs >= ac);
-    const bool b_holds = narrow & !a_holds & (cb * ac - sb * as >= bc);
     const double c1 = cb * ac - sb * as, s1 = sb * ac + cb * as;  // beta + ta
+    const bool a_holds = narrow & (cb * bc - sb * bs >= ac);
+    const bool b_holds = narrow & !a_holds & (c1 >= bc);
     const double cos_s = c1 * bc - s1 * bs, sin_s = s1 * bc + c1 * bs;
     const bool joined = narrow & !a_holds & !b_holds & (sin_s > 0);
     const double ch = std::sqrt(std::max(0.0, (1 + cos_s) / 2)),
