@@ -27,8 +27,13 @@ CommandOutcome OutcomeOf(const ack_t& ack) {
   return outcome;
 }
 
-CommandClient::CommandClient(Bus& bus, const Channels& channels, double timeout_seconds, CommandSigner signer)
-    : bus_(bus), timeout_(timeout_seconds), signer_(std::move(signer)), client_id_(NewClientId()) {
+CommandClient::CommandClient(Bus& bus, const Channels& channels, double timeout_seconds, CommandSigner signer,
+                             std::function<double()> clock)
+    : bus_(bus),
+      timeout_(timeout_seconds),
+      signer_(std::move(signer)),
+      clock_(std::move(clock)),
+      client_id_(NewClientId()) {
   ack_subscription_ = bus_.Subscribe(
       channels.ack, [this](const std::string&, const uint8_t* data, size_t size) { OnAck(data, size); });
 }

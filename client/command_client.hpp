@@ -35,8 +35,11 @@ class CommandClient {
  public:
   static constexpr double kRetryInterval = 0.5;  ///< s between resends
 
-  /// `signer` stamps every command sent: unsigned by default.
-  CommandClient(Bus& bus, const Channels& channels, double timeout_seconds, CommandSigner signer = {});
+  /// `signer` stamps every command sent: unsigned by default. The timeout and the resends run on
+  /// `clock` (s, monotonic); a test that drives an in-process server on a clock of its own gives
+  /// the client the same one.
+  CommandClient(Bus& bus, const Channels& channels, double timeout_seconds, CommandSigner signer = {},
+                std::function<double()> clock = MonotonicSeconds);
   ~CommandClient();  ///< stops listening for ACKs: a client may go before its bus
   CommandClient(const CommandClient&) = delete;
   CommandClient& operator=(const CommandClient&) = delete;
@@ -64,10 +67,10 @@ class CommandClient {
   CommandOutcome SendRepeatedly(int64_t sequence, Publish publish) {
     awaited_ = sequence;
     outcome_ = CommandOutcome{};
-    const double start = MonotonicSeconds();
+    const double start = clock_();
     double next_send = start;
     while (outcome_.result == CommandOutcome::kNoAnswer) {
-      const double now = MonotonicSeconds();
+      const double now = clock_();
       if (now - start >= timeout_) break;
       if (now >= next_send) {
         publish();
@@ -88,6 +91,7 @@ class CommandClient {
   Bus& bus_;
   double timeout_;
   CommandSigner signer_;
+  std::function<double()> clock_;
   std::string client_id_;
   int64_t sequence_ = 0;
   int64_t awaited_ = -1;

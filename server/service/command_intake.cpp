@@ -66,8 +66,13 @@ std::string TimelineNote(const sim::Timeline& timeline, const CommandSets& sets)
 }  // namespace
 
 CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats,
-                             std::vector<CommandKey> keys)
-    : bus_(bus), channels_(channels), session_(session), stats_(stats), authenticator_(std::move(keys)) {
+                             std::vector<CommandKey> keys, std::function<double()> clock)
+    : bus_(bus),
+      channels_(channels),
+      session_(session),
+      stats_(stats),
+      authenticator_(std::move(keys)),
+      clock_(std::move(clock)) {
   Subscribe<wind_command_t>(channels.wind, &CommandIntake::ApplyWind);
   Subscribe<param_command_t>(channels.param, &CommandIntake::ApplyParams);
   Subscribe<refresh_request_t>(channels.refresh, &CommandIntake::ApplyRefresh);
@@ -225,7 +230,7 @@ static_assert(std::tuple_size_v<decltype(ServerStats::commands_refused)> ==
 void CommandIntake::Refuse(const std::string& channel, const std::string& client_id, int64_t sequence,
                            const CommandAuthenticator::Verdict& verdict) {
   ++stats_.commands_refused[static_cast<size_t>(verdict.refusal)];
-  const double now = MonotonicSeconds();
+  const double now = clock_();
   if (now - refusal_second_ >= 1.0) {
     if (refusals_in_second_ > kRefusalAnswersPerSecond)
       spdlog::warn("{} more command(s) refused in that second, counted but not answered",
@@ -258,7 +263,7 @@ void CommandIntake::Stamp(ack_t* ack) const {
 void CommandIntake::Drop(const std::string& channel, const std::string& reason) {
   ++stats_.messages_dropped;
   ++drops_since_log_;
-  const double now = MonotonicSeconds();
+  const double now = clock_();
   if (now - last_drop_log_ >= 1.0) {
     spdlog::warn("dropped {} undecodable message(s); latest on {}: {}", drops_since_log_, channel, reason);
     last_drop_log_ = now;

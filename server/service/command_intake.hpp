@@ -16,7 +16,9 @@
 // command that set what a playing timeline drives, which then lasts one step.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -31,6 +33,7 @@
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
 #include "messages/command_key.hpp"
+#include "messages/utime.hpp"
 #include "server/service/command_authenticator.hpp"
 #include "server/service/journal.hpp"
 #include "server/service/server_presence.hpp"
@@ -48,9 +51,10 @@ class CommandIntake {
   static constexpr int kRefusalAnswersPerSecond = 50;
 
   /// Subscribes to the command channels on `bus`; handlers run inside bus.Handle(). With `keys`,
-  /// only commands signed with one of them are taken.
+  /// only commands signed with one of them are taken. `clock` (s, monotonic: the server loop's)
+  /// paces the answers to refusals and the log lines about drops.
   CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats,
-                std::vector<CommandKey> keys = {});
+                std::vector<CommandKey> keys = {}, std::function<double()> clock = MonotonicSeconds);
 
   /// True once after any accepted command that changed parameters (PARAMS is due).
   bool TakeParamsChanged() { return std::exchange(params_changed_, false); }
@@ -112,6 +116,7 @@ class CommandIntake {
   Journal* journal_ = nullptr;
   const ServerPresence* presence_ = nullptr;
   CommandAuthenticator authenticator_;
+  std::function<double()> clock_;
   std::map<std::string, ack_t> last_ack_;  ///< per client id: the answer to its latest command
   std::vector<Settling> settling_;         ///< in the order they were applied
   bool params_changed_ = false;
@@ -119,10 +124,10 @@ class CommandIntake {
   std::string note_;  ///< for the ACK of the command being applied, if it is accepted
   int64_t refresh_request_ = -1;
   bool tables_request_ = false;
-  double last_drop_log_ = -1;  ///< wall s of the last logged drop (drops are logged once a second)
+  double last_drop_log_ = -INFINITY;  ///< s on the clock: the last logged drop (logged once a second)
   int64_t drops_since_log_ = 0;
-  double refusal_second_ = -1;      ///< wall s when the current second of refusals began
-  int64_t refusals_in_second_ = 0;  ///< refusals in it: answered and logged up to the limit
+  double refusal_second_ = -INFINITY;  ///< s on the clock: when the current second of refusals began
+  int64_t refusals_in_second_ = 0;     ///< refusals in it: answered and logged up to the limit
 };
 
 }  // namespace flagsim

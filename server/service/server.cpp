@@ -24,12 +24,12 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
       channels_(channels),
       options_(options),
       session_(scene),
-      presence_(bus, channels),
+      presence_(bus, channels, options.clock),
       inputs_(options.inputs_log.empty()
                   ? nullptr
                   : std::make_unique<InputsLog>(bus, options.inputs_log, UnixMicros())),
       journal_(inputs_ ? static_cast<Publisher*>(inputs_.get()) : &bus, channels),
-      intake_(bus, channels, session_, stats_, options.command_keys),
+      intake_(bus, channels, session_, stats_, options.command_keys, options.clock),
       paced_(bus),
       frames_([this](const EncodedFrame& frame) { PublishFrame(frame); }) {
   intake_.SetJournal(&journal_);

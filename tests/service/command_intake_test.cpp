@@ -11,19 +11,21 @@
 #include "server/scene/parameter_table.hpp"
 #include "server/service/server.hpp"
 #include "tests/messages/message_fixtures.hpp"
+#include "tests/service/simulated_clock.hpp"
 
 namespace flagsim {
 namespace {
 
 class CommandIntakeTest : public ::testing::Test {
  protected:
-  // The server steps back to back while the client waits: accepted WIND and PARAM commands are
-  // answered once the flag has taken CommandIntake::kSettleSteps steps under them.
+  // The server steps one step of the simulated clock each time the client looks for its answer:
+  // accepted WIND and PARAM commands are answered once the flag has taken
+  // CommandIntake::kSettleSteps steps under them.
   CommandIntakeTest()
       : bus_("memq://"),
-        server_(bus_, channels_, Scene{}, ServerOptions{true, 0, {}, MonotonicSeconds, {}}),
-        client_(bus_, channels_, 5.0) {
-    client_.WhileWaiting([this] { server_.Tick(MonotonicSeconds()); });
+        server_(bus_, channels_, Scene{}, clock_.ServerOnIt()),
+        client_(bus_, channels_, 5.0, {}, clock_.Reader()) {
+    client_.WhileWaiting([this] { clock_.Step(server_); });
   }
 
   const Scene& scene() const { return server_.session().scene(); }
@@ -45,6 +47,7 @@ class CommandIntakeTest : public ::testing::Test {
     return values;
   }
 
+  testing::SimulatedClock clock_;
   Bus bus_;
   Channels channels_;
   Server server_;
@@ -123,9 +126,7 @@ TEST_F(CommandIntakeTest, ARetryIsAnsweredAgainButAppliedOnce) {
   for (int i = 0; i < 3; ++i) bus_.Publish(channels_.wind, command);
   bus_.HandleAll();
   EXPECT_EQ(acks, 0);  // settling: retries wait for the one answer
-  while (server_.session().simulation().state().step < CommandIntake::kSettleSteps) {
-    server_.Tick(MonotonicSeconds());
-  }
+  while (server_.session().simulation().state().step < CommandIntake::kSettleSteps) clock_.Step(server_);
   bus_.HandleAll();
   EXPECT_EQ(acks, 1);
   bus_.Publish(channels_.wind, command);  // a retry after the answer: the same answer again
@@ -300,7 +301,7 @@ TEST_F(CommandIntakeTest, KeyframesAreAddedPlayedAndListedOnTimeline) {
   EXPECT_EQ(key.wind->velocity, (sim::Vec3{6, 0, 0}));
   EXPECT_EQ(*key.Parameter("damping"), 0.1);
   EXPECT_EQ(key.camera->fov, 40);
-  server_.Tick(MonotonicSeconds());  // TIMELINE follows an accepted KEYFRAME
+  server_.Tick(clock_.now());  // TIMELINE follows an accepted KEYFRAME
   bus_.HandleAll();
   ASSERT_TRUE(listed);
   ASSERT_EQ(listed->num_keys, 2);
@@ -312,7 +313,7 @@ TEST_F(CommandIntakeTest, KeyframesAreAddedPlayedAndListedOnTimeline) {
   ASSERT_EQ(client_.Send(channels_.keyframe, KeyframeCommand(keyframe_command_t::PLAY)).result,
             CommandOutcome::kAccepted);
   EXPECT_TRUE(scene().timeline.playing());
-  while (scene().timeline.position() < 0.5) server_.Tick(MonotonicSeconds());
+  while (scene().timeline.position() < 0.5) clock_.Step(server_);
   // Past the glide from the scene's 2000, on the line from 1000 at 0 s to 1500 at 2 s: the last
   // step started dt before the position.
   const double position = scene().timeline.position();
@@ -463,7 +464,15 @@ TEST_F(CommandIntakeTest, TruncatedAndLyingKeyframeBytesAreDropped) {
 
 // A command that sets what a playing timeline drives is applied, and its ACK says for how long.
 TEST_F(CommandIntakeTest, TheAckSaysWhenAPlayingTimelineDrivesWhatACommandSet) {
+  // Keys at 0 and an hour on: the timeline plays throughout the test, setting the stiffness and
+  // the camera but not the wind.
   ASSERT_EQ(client_.Send(channels_.keyframe, AddStiffness(0, 1000)).result, CommandOutcome::kAccepted);
+  keyframe_command_t camera = AddStiffness(3600, 1000);
+  camera.key.has_camera = true;
+  camera.key.camera_eye[2] = 5;
+  camera.key.camera_target[1] = 2;
+  camera.key.camera_fov = 40;
+  ASSERT_EQ(client_.Send(channels_.keyframe, camera).result, CommandOutcome::kAccepted);
   CommandOutcome outcome = SetParams({"stiffness", "gravity"}, {"1200", "9"});
   EXPECT_EQ(outcome.result, CommandOutcome::kAccepted);
   EXPECT_EQ(outcome.reason, "");  // paused: commands rule
@@ -477,15 +486,6 @@ TEST_F(CommandIntakeTest, TheAckSaysWhenAPlayingTimelineDrivesWhatACommandSet) {
   outcome = client_.Send(channels_.wind, testing::SomeWindCommand());
   EXPECT_EQ(outcome.result, CommandOutcome::kAccepted);
   EXPECT_EQ(outcome.reason, "");  // the timeline leaves the wind alone
-
-  // An hour on: the server steps back to back while the client waits, as many steps as the
-  // machine's speed gives, and a key a second on was sometimes passed (the timeline stopped).
-  keyframe_command_t camera = AddStiffness(3600, 1000);
-  camera.key.has_camera = true;
-  camera.key.camera_eye[2] = 5;
-  camera.key.camera_target[1] = 2;
-  camera.key.camera_fov = 40;
-  ASSERT_EQ(client_.Send(channels_.keyframe, camera).result, CommandOutcome::kAccepted);
   camera_command_t orbit{};
   orbit.operation = camera_command_t::ORBIT;
   orbit.angle = 0.3;
@@ -493,6 +493,7 @@ TEST_F(CommandIntakeTest, TheAckSaysWhenAPlayingTimelineDrivesWhatACommandSet) {
   EXPECT_EQ(outcome.result, CommandOutcome::kAccepted);
   EXPECT_EQ(outcome.reason.rfind("applied, but the playing timeline sets the camera", 0), 0u)
       << outcome.reason;
+  EXPECT_TRUE(scene().timeline.playing());
 }
 
 }  // namespace

@@ -11,11 +11,11 @@
 #include <string>
 
 #include "client/command_client.hpp"
-#include "messages/utime.hpp"
 #include "server/service/replay.hpp"
 #include "server/service/server.hpp"
 #include "tests/messages/message_fixtures.hpp"
 #include "tests/service/log_fixtures.hpp"
+#include "tests/service/simulated_clock.hpp"
 
 namespace flagsim {
 namespace {
@@ -38,13 +38,13 @@ TEST(InputsLog, AServersOwnRecordReplaysBitForBit) {
   const std::string path = testing::TempPath("inputs.lcmlog");
   const Channels channels;
   Bus bus("memq://");
-  ServerOptions options;
-  options.fast = true;
+  testing::SimulatedClock clock;
+  ServerOptions options = clock.ServerOnIt();
   options.duration = 11;  // 5500 steps: past the periodic checkpoints at 2500 and 5000
   options.inputs_log = path;
   Server server(bus, channels, SmallWithoutFrames(), options);
-  CommandClient client(bus, channels, 5.0);
-  client.WhileWaiting([&server] { server.Tick(MonotonicSeconds()); });
+  CommandClient client(bus, channels, 5.0, {}, clock.Reader());
+  client.WhileWaiting([&] { clock.Step(server); });
   wind_command_t wind = testing::SomeWindCommand();
   ASSERT_EQ(client.Send(channels.wind, wind).result, CommandOutcome::kAccepted);
   param_command_t stiffer{};
@@ -52,8 +52,9 @@ TEST(InputsLog, AServersOwnRecordReplaysBitForBit) {
   stiffer.values = {"3500"};
   stiffer.num_assignments = 1;
   ASSERT_EQ(client.Send(channels.param, stiffer).result, CommandOutcome::kAccepted);
+  clock.StepUntil(server, [&] { return server.session().simulation().state().time >= options.duration; });
   const std::atomic<bool> stop{false};
-  server.Run(stop);
+  server.Run(stop);  // at its duration: the end checkpoint, and the log closed
   const int64_t last_step = server.session().simulation().state().step;
   ASSERT_EQ(last_step, 5500);
 

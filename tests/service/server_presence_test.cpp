@@ -12,6 +12,7 @@
 #include "flagsim/status_t.hpp"
 #include "server/service/server.hpp"
 #include "tests/messages/message_fixtures.hpp"
+#include "tests/service/simulated_clock.hpp"
 
 namespace flagsim {
 namespace {
@@ -74,7 +75,10 @@ TEST_F(ServerPresenceTest, AFloodOfForgedIdsIsBounded) {
 TEST(ServerIds, TheServerSaysWhoItIsAndWhomElseItHears) {
   Bus bus("memq://");
   Channels channels;
-  Server server(bus, channels, Scene{}, ServerOptions{true, 0.2, {}, MonotonicSeconds, {}});
+  testing::SimulatedClock clock;
+  ServerOptions options = clock.ServerOnIt();
+  options.duration = 0.2;
+  Server server(bus, channels, Scene{}, options);
   std::vector<state_t> states;
   std::vector<status_t> statuses;
   bus.Subscribe(channels.state, [&](const std::string&, const uint8_t* data, size_t size) {
@@ -86,14 +90,15 @@ TEST(ServerIds, TheServerSaysWhoItIsAndWhomElseItHears) {
   status_t other{};
   other.server_id = server.presence().id() + 1;
   bus.Publish(channels.status, other);
-  CommandClient client(bus, channels, 5.0);
-  client.WhileWaiting([&] { server.Tick(MonotonicSeconds()); });
+  CommandClient client(bus, channels, 5.0, {}, clock.Reader());
+  client.WhileWaiting([&] { clock.Step(server); });
   const CommandOutcome outcome = client.Send(channels.wind, testing::SomeWindCommand());
   ASSERT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
   EXPECT_EQ(outcome.server_id, server.presence().id());
   EXPECT_EQ(outcome.other_servers, 1);
+  clock.StepUntil(server, [&] { return server.session().simulation().state().time >= options.duration; });
   std::atomic<bool> stop{false};
-  server.Run(stop);  // to its duration, then the last STATE and STATUS
+  server.Run(stop);  // at its duration: the last STATE and STATUS
   ASSERT_FALSE(states.empty());
   for (const state_t& state : states) EXPECT_EQ(state.server_id, server.presence().id());
   const auto own = std::find_if(statuses.rbegin(), statuses.rend(),

@@ -4,14 +4,13 @@
 // counted; a reader's question needs no signature.
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "client/command_client.hpp"
 #include "client/stream_reader.hpp"
 #include "flagsim/applied_command_t.hpp"
 #include "server/service/command_intake.hpp"
 #include "server/service/server.hpp"
 #include "tests/messages/message_fixtures.hpp"
+#include "tests/service/simulated_clock.hpp"
 
 namespace flagsim {
 namespace {
@@ -26,8 +25,8 @@ class SignedCommandIntakeTest : public ::testing::Test {
     key.secret.fill(fill);
     return key;
   }
-  static ServerOptions WithKeys() {
-    ServerOptions options{true, 0, {}, MonotonicSeconds, {}};
+  ServerOptions WithKeys() const {
+    ServerOptions options = clock_.ServerOnIt();
     options.command_keys = {Key("ops", 7)};
     return options;
   }
@@ -44,8 +43,8 @@ class SignedCommandIntakeTest : public ::testing::Test {
 
   /// A wind command sent by a client that signs with `signer`, waited for.
   CommandOutcome SendWind(CommandSigner signer, double speed) {
-    CommandClient client(bus_, channels_, 5.0, std::move(signer));
-    client.WhileWaiting([this] { server_.Tick(MonotonicSeconds()); });
+    CommandClient client(bus_, channels_, 5.0, std::move(signer), clock_.Reader());
+    client.WhileWaiting([this] { clock_.Step(server_); });
     wind_command_t command{};
     command.velocity[0] = speed;
     return client.Send(channels_.wind, command);
@@ -55,7 +54,7 @@ class SignedCommandIntakeTest : public ::testing::Test {
   ack_t AnswerTo(const std::vector<uint8_t>& bytes) {
     acks_.clear();
     bus_.Publish(channels_.wind, bytes.data(), bytes.size());
-    server_.Tick(MonotonicSeconds());
+    clock_.Step(server_);
     EXPECT_EQ(acks_.size(), 1u);
     return acks_.empty() ? ack_t{} : acks_.back();
   }
@@ -65,6 +64,7 @@ class SignedCommandIntakeTest : public ::testing::Test {
   }
   sim::Vec3 Wind() const { return server_.session().scene().wind.velocity; }
 
+  testing::SimulatedClock clock_;
   Bus bus_;
   Channels channels_;
   Server server_;
@@ -129,8 +129,8 @@ TEST_F(SignedCommandIntakeTest, ACommandSentAgainFromTheBusIsReplayedAndAnOldOne
 }
 
 TEST_F(SignedCommandIntakeTest, AReadersQuestionNeedsNoSignatureButAKeyframeRequestDoes) {
-  CommandClient reader(bus_, channels_, 5.0);
-  reader.WhileWaiting([this] { server_.Tick(MonotonicSeconds()); });
+  CommandClient reader(bus_, channels_, 5.0, {}, clock_.Reader());
+  reader.WhileWaiting([this] { clock_.Step(server_); });
   refresh_request_t question{};
   question.tables_only = true;
   EXPECT_EQ(reader.Send(channels_.refresh, question).result, CommandOutcome::kAccepted);
@@ -147,21 +147,26 @@ TEST_F(SignedCommandIntakeTest, AFloodOfForgeriesIsCountedAndFewAreAnswered) {
   wind_command_t forged{};
   forged.client_id = "forger";
   forged.velocity[0] = 30;
-  const double start = MonotonicSeconds();
-  for (int sent = 0; sent < kForgeries; sent += kBatch) {
-    for (int k = 0; k < kBatch; ++k) {
-      forged.sequence = sent + k;
-      CommandSigner(Key("ops", 1)).Stamp(channels_.wind, forged);
-      const std::vector<uint8_t> bytes = testing::Encode(forged);
-      bus_.Publish(channels_.wind, bytes.data(), bytes.size());
+  const auto flood = [&](int first) {
+    for (int sent = 0; sent < kForgeries; sent += kBatch) {
+      for (int k = 0; k < kBatch; ++k) {
+        forged.sequence = first + sent + k;
+        CommandSigner(Key("ops", 1)).Stamp(channels_.wind, forged);
+        const std::vector<uint8_t> bytes = testing::Encode(forged);
+        bus_.Publish(channels_.wind, bytes.data(), bytes.size());
+      }
+      clock_.Step(server_);
     }
-    server_.Tick(MonotonicSeconds());
-  }
-  const double seconds = MonotonicSeconds() - start;
+  };  // over 100 steps: 0.2 s of the server's clock
+  flood(0);
   EXPECT_EQ(Refused(CommandAuthenticator::Refusal::kBadMac), kForgeries);
-  // Answers are limited per second of the wall clock; the bound holds however long it took.
-  EXPECT_LE(acks_.size(), size_t(CommandIntake::kRefusalAnswersPerSecond * (std::floor(seconds) + 1)));
-  EXPECT_GE(acks_.size(), size_t(CommandIntake::kRefusalAnswersPerSecond));
+  // Answers are limited per second of the server's clock.
+  EXPECT_EQ(acks_.size(), size_t(CommandIntake::kRefusalAnswersPerSecond));
+  const double next_second = clock_.now() + 1;
+  clock_.StepUntil(server_, [&] { return clock_.now() >= next_second; });
+  flood(kForgeries);
+  EXPECT_EQ(Refused(CommandAuthenticator::Refusal::kBadMac), 2 * kForgeries);
+  EXPECT_EQ(acks_.size(), size_t(2 * CommandIntake::kRefusalAnswersPerSecond));
   EXPECT_EQ(Wind(), Scene{}.wind.velocity);
   EXPECT_EQ(SendWind(CommandSigner(Key("ops", 7)), 3).result, CommandOutcome::kAccepted);
 }

@@ -11,6 +11,7 @@
 #include "messages/event_log_reader.hpp"
 #include "server/service/server.hpp"
 #include "tests/client/gateway/tile_update_reader.hpp"
+#include "tests/service/simulated_clock.hpp"
 
 namespace flagsim::gateway {
 namespace {
@@ -90,27 +91,32 @@ Scene SmallScene() {
   return scene;
 }
 
+/// The gateway's options in these tests: its recordings in the test's directory, its clock the
+/// server's simulated one.
+GatewayOptions OptionsOn(const flagsim::testing::SimulatedClock& clock) {
+  GatewayOptions options;
+  options.record_directory = ::testing::TempDir() + "/gateway_test_recordings";
+  options.clock = clock.Reader();
+  return options;
+}
+
+// The server steps on a simulated clock, one step per pass of the test's loop; the frame stage
+// and the paced publisher are real threads, so conditions on frames are waited for.
 class GatewayTest : public ::testing::Test {
  protected:
   GatewayTest()
       : bus_("memq://"),
-        server_(bus_, channels_, SmallScene(), ServerOptions{true, 0, {}, MonotonicSeconds, {}}),
-        gateway_(bus_, channels_, Options()),
+        server_(bus_, channels_, SmallScene(), clock_.ServerOnIt()),
+        gateway_(bus_, channels_, OptionsOn(clock_)),
         client_(gateway_) {}
-
-  static GatewayOptions Options() {
-    GatewayOptions options;
-    options.record_directory = ::testing::TempDir() + "/gateway_test_recordings";
-    return options;
-  }
 
   /// Runs the server, the bus and the gateway until `done` (the client reading all along),
   /// within a generous bound of wall time; false if it never came.
   bool RunUntil(const std::function<bool()>& done, FakeClient* reader = nullptr) {
     reader = reader ? reader : &client_;
-    const double give_up = MonotonicSeconds() + 30;
+    const double give_up = MonotonicSeconds() + 60;
     while (MonotonicSeconds() < give_up) {
-      server_.Tick(MonotonicSeconds());
+      clock_.Step(server_);
       bus_.HandleAll();
       gateway_.Tick();
       reader->Read();
@@ -122,6 +128,7 @@ class GatewayTest : public ::testing::Test {
     return client_.data.count(channel) > 0 && client_.data.at(channel).size() >= count;
   }
 
+  flagsim::testing::SimulatedClock clock_;
   Bus bus_;
   Channels channels_;
   Server server_;
@@ -233,20 +240,20 @@ TEST(GatewayWithKeys, TheServerTakesWhatTheGatewaySigns) {
   key.secret.fill(3);
   Bus bus("memq://");
   Channels channels;
-  ServerOptions keyed{true, 0, {}, MonotonicSeconds, {}};
+  flagsim::testing::SimulatedClock clock;
+  ServerOptions keyed = clock.ServerOnIt();
   keyed.command_keys = {key};
   Server server(bus, channels, SmallScene(), keyed);
-  GatewayOptions signing, plain;
-  signing.record_directory = plain.record_directory = ::testing::TempDir() + "/gateway_test_recordings";
+  GatewayOptions signing = OptionsOn(clock), plain = OptionsOn(clock);
   signing.signer = CommandSigner(key);
   Gateway signed_gateway(bus, channels, signing), plain_gateway(bus, channels, plain);
   FakeClient signed_page(signed_gateway), plain_page(plain_gateway);
   signed_page.Call(kWindService, 1, R"({"velocity": [7, 0, 0]})");
   plain_page.Call(kWindService, 2, R"({"velocity": [3, 0, 0]})");
-  const double give_up = MonotonicSeconds() + 30;
-  while (MonotonicSeconds() < give_up &&
+  const double give_up = clock.now() + 30;  // the relay gives up after its timeout, on this clock
+  while (clock.now() < give_up &&
          (signed_page.responses.count(1) == 0 || plain_page.responses.count(2) == 0)) {
-    server.Tick(MonotonicSeconds());
+    clock.Step(server);
     bus.HandleAll();
     signed_gateway.Tick();
     plain_gateway.Tick();
@@ -397,8 +404,8 @@ TEST_F(GatewayTest, ARecordingIsALogOfTheBusToDownload) {
   ASSERT_TRUE(client_.responses[1]["recording"]) << client_.responses[1];
   const std::string name = client_.responses[1]["file"];
   EXPECT_FALSE(gateway_.RecordingFile(name)) << "not while it is being written";
-  const double until = MonotonicSeconds() + 0.5;
-  RunUntil([&] { return MonotonicSeconds() > until; });
+  const double until = clock_.now() + 0.5;  // 30 STATEs, PARAMS and STATUS, at least
+  ASSERT_TRUE(RunUntil([&] { return clock_.now() > until; }));
   client_.Call(kRecordService, 2, R"({"action": "stop"})");
   client_.Read();
   const json& stopped = client_.responses[2];
