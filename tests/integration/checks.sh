@@ -48,6 +48,16 @@ await_bytes() {
   done
   return 1
 }
+# await_text FILE PATTERN [SECONDS]: until FILE has a line matching the extended regular
+# expression PATTERN (at most SECONDS, 30 by default): a reader running in the background has seen
+# what the test waits for.
+await_text() {
+  for _ in $(seq $((${3:-30} * 10))); do
+    grep -Eq -- "$2" "$1" 2>/dev/null && return 0
+    sleep 0.1
+  done
+  return 1
+}
 # finish: the tally, and the exit code.
 finish() {
   echo "$passes passed, $failures failed"

@@ -11,7 +11,7 @@ server=$!
 trap 'kill $server 2>/dev/null || true; rm -rf "$work"' EXIT
 
 source "$(dirname "$0")/checks.sh"
-sleep 1
+await_server "$build/client/flagctl" FLAGSIM_ || fail "no status from the server despite retries"
 for i in 1 2 3; do
   expect 0 "command $i answered despite loss" "$build/client/flagctl" --timeout 5 wind $((4 + i)) 0 1
 done

@@ -31,14 +31,20 @@ frames=30
   --png-dir "$work/rendered" >"$work/render.out" 2>&1 || fail "flagd render" "$work/render.out"
 
 # Readers first, then the player: the log lasts 3 s of simulated time, so as long in real time.
-"$flagctl" --prefix $prefix watch --duration 4.5 >"$work/watch.out" 2>&1 &
+# A reader may start listening after the player has begun, so the log is played again until both
+# have what they wait for: the watcher a line about frames, the snapshot a whole frame.
+"$flagctl" --prefix $prefix --timeout 60 watch >"$work/watch.out" 2>&1 &
 watcher=$!
-"$flagctl" --prefix $prefix --timeout 6 snapshot -o "$work/snapshot.png" >"$work/snapshot.out" 2>&1 &
+"$flagctl" --prefix $prefix --timeout 60 snapshot -o "$work/snapshot.png" >"$work/snapshot.out" 2>&1 &
 snapper=$!
-sleep 0.3
 if lcm-logplayer "$work/run.lcmlog" >"$work/player.out" 2>&1; then pass "lcm-logplayer plays the render's log"
 else fail "lcm-logplayer exit $?" "$work/player.out"; fi
+for _ in $(seq 10); do
+  grep -q "FRAME" "$work/watch.out" && ! kill -0 $snapper 2>/dev/null && break
+  lcm-logplayer "$work/run.lcmlog" >/dev/null 2>&1
+done
 
+kill -INT $watcher
 code=0
 wait $watcher || code=$?
 watcher=""

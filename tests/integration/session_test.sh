@@ -12,7 +12,9 @@ prefix=ITEST_
 work=$(mktemp -d)
 server=""
 second=""
+watcher=""
 cleanup() {
+  [[ -n $watcher ]] && kill "$watcher" 2>/dev/null || true
   [[ -n $server ]] && kill "$server" 2>/dev/null || true
   [[ -n $second ]] && kill "$second" 2>/dev/null || true
   rm -rf "$work"
@@ -94,8 +96,14 @@ expect 3 "camera size too large rejected" "$flagctl" --prefix $prefix camera siz
 contains "width: 9000 is out of range" "  with the field named"
 expect 0 "snapshot follows the new size" "$flagctl" --prefix $prefix --timeout 5 snapshot -o "$work/small.png"
 contains "320 x 180" "  at 320 x 180"
-expect 0 "watch reports frames" "$flagctl" --prefix $prefix watch --duration 2.5
-contains "FRAME" "  with their rate"
+# watch until its line a second reports frames (it stops on SIGINT).
+"$flagctl" --prefix $prefix --timeout 30 watch >"$work/watch.out" 2>&1 &
+watcher=$!
+if await_text "$work/watch.out" "FRAME +[0-9.]+ Hz"; then pass "watch reports frames with their rate"
+else fail "watch reported no frames" "$work/watch.out"; fi
+kill -INT $watcher
+wait $watcher || fail "watch on SIGINT" "$work/watch.out"
+watcher=""
 expect 0 "frames can be turned off" "$flagctl" --prefix $prefix set frame_rate=0
 expect 0 "and a snapshot still gets one" "$flagctl" --prefix $prefix --timeout 5 snapshot -o "$work/asked.png"
 expect 0 "frames back on" "$flagctl" --prefix $prefix set frame_rate=30
@@ -129,7 +137,12 @@ expect 4 "no TIMELINE on another prefix" "$flagctl" --prefix NOBODY_ --timeout 1
 echo "-- hostile bytes"
 expect 0 "spray garbage on every command channel" "$spray" "$LCM_DEFAULT_URL" 40 \
   ${prefix}WIND ${prefix}PARAM ${prefix}REFRESH ${prefix}CAMERA ${prefix}KEYFRAME
-sleep 1.5  # a STATUS goes out each second
+# A STATUS goes out each second: until one counts all that was sprayed.
+for _ in $(seq 50); do
+  "$flagctl" --prefix $prefix status >"$work/status.out" 2>&1 && grep -q "200 undecodable dropped" "$work/status.out" &&
+    break
+  sleep 0.2
+done
 expect 0 "the server still answers" "$flagctl" --prefix $prefix status
 contains "200 undecodable dropped" "  and counted what it dropped on each channel"
 expect 0 "and still takes commands" "$flagctl" --prefix $prefix wind 5 0 1
@@ -155,6 +168,13 @@ for _ in $(seq 50); do
 done
 if ((counted)); then pass "status names the other server and counts it"
 else fail "no status counted the other server" "$work/out"; fi
+# Both take the command; the first answer comes from either, which may not yet have heard the
+# other's STATUS (a second apart): until an answer warns.
+for _ in $(seq 10); do
+  "$flagctl" --prefix $prefix wind 6 0 1 >"$work/wind.out" 2>&1 && grep -q "hears 1 other server" "$work/wind.out" &&
+    break
+  sleep 0.5
+done
 expect 0 "a command both take is accepted" "$flagctl" --prefix $prefix wind 6 0 1
 contains "hears 1 other server(s) on prefix $prefix" "  with a warning that another took it too"
 kill -TERM "$second"
@@ -171,10 +191,16 @@ if [[ $code == 0 ]]; then passes=$((passes + 1)); echo "ok    flagd stops cleanl
 else failures=$((failures + 1)); echo "FAIL  flagd exit $code on SIGTERM"; cat "$work/flagd.log"; fi
 
 echo "-- playback"
-"$flagctl" --prefix $prefix watch --duration 4 >"$work/watch.out" 2>&1 &
+# The watcher may start listening after the player has begun: the log is played until it has
+# printed a line about what it heard, then the watcher is stopped.
+"$flagctl" --prefix $prefix --timeout 60 watch >"$work/watch.out" 2>&1 &
 watcher=$!
-sleep 0.5
 expect 0 "lcm-logplayer plays the log" lcm-logplayer "$work/session.lcmlog"
+for _ in $(seq 10); do
+  await_text "$work/watch.out" "^t +[0-9.]+ s" 1 && break
+  lcm-logplayer "$work/session.lcmlog" >/dev/null 2>&1
+done
+kill -INT $watcher
 code=0
 wait $watcher || code=$?
 cp "$work/watch.out" "$work/out"

@@ -137,7 +137,7 @@ await run(async () => {
   check("  and the good client is still served", await stillServed(heard, "after the drop"));
   // Three 401s above (the page without the token and with a wrong one, a WebSocket without it)
   // and a 403 (the foreign origin).
-  const counted = await waitFor(() => heard.gatewayStatus?.unauthorized >= 3 && heard.gatewayStatus, 5, "counts");
+  const counted = await waitFor(() => heard.gatewayStatus?.unauthorized >= 3 && heard.gatewayStatus, 20, "counts");
   check("refusals are counted: 401s and 403s", counted.unauthorized === 3 && counted.forbidden === 1, counted);
   sleeper.terminate();
   noisy.close();

@@ -125,6 +125,10 @@ async function checkTimeline(page) {
                              10, "TIMELINE with a key");
   check("a key added from the page is on TIMELINE", keys.length === 1 && keys[0].wind !== undefined, keys);
   check("  flagctl keyframe list shows it", /1 key/.test(await flagctlRun("keyframe", "list")));
+  // A second key an hour on: a timeline of one key ends as soon as it has glided there, so the
+  // page might never see it playing on a slow machine; this one plays until paused.
+  await flagctlRun("keyframe", "add", "3600", "--wind", "5", "0", "1");
+  await waitFor(() => hooks(page, () => window.flagsim.timeline?.keys.length === 2), 10, "TIMELINE with two keys");
   await page.locator("#timeline-body button.play").click();
   const playing = await waitFor(() => hooks(page, () => window.flagsim.timeline?.playing && window.flagsim.timeline),
                                 10, "TIMELINE playing");
