@@ -165,10 +165,10 @@ int Record(const Globals& globals, const std::string& path, double duration, con
     if (recorder->events() == 0 && now - start >= globals.timeout && duration == 0) break;
     link.bus.Handle(50);
   }
-  if (recorder->failed()) {
-    std::fprintf(stderr, "flagctl: writing %s failed after %lld events\n", path.c_str(),
-                 static_cast<long long>(recorder->events()));
-    return 1;
+  if (recorder->failed()) {  // the disk is full: the log ends at its last whole event
+    std::fprintf(stderr, "flagctl: recording stopped after %.1f s: %s\n", MonotonicSeconds() - start,
+                 recorder->error().c_str());
+    return kFailed;
   }
   std::printf("%s: %lld events, %.1f KB in %.1f s\n", path.c_str(),
               static_cast<long long>(recorder->events()), recorder->bytes() / 1024.0,

@@ -1,5 +1,7 @@
 #include "client/gateway/gateway.hpp"
 
+#include <cstdio>
+
 #include "client/gateway/bus_json.hpp"
 #include "client/gateway/command_requests.hpp"
 #include "client/gateway/compressed_image.hpp"
@@ -139,6 +141,15 @@ void Gateway::OnParams(const params_t& params) {
 void Gateway::OnAck(const ack_t& ack) {
   feeds_[kAcksChannel].Publish(Nanoseconds(ack.utime), AckJson(ack).dump());
   relay_.OnAck(ack);
+  WakeAll();
+}
+
+// A recording that stopped on its own (a full disk): said on stderr and to every client, beside
+// the record service's answers, which carry it too.
+void Gateway::RecordingEnded(const std::string& why) {
+  std::fprintf(stderr, "flagctl serve: recording stopped: %s\n", why.c_str());
+  for (auto& [id, client] : clients_)
+    client->protocol().SendStatus(ClientProtocol::kError, "/flag/record: " + why);
   WakeAll();
 }
 
@@ -349,7 +360,7 @@ void Gateway::SetParameters(int client, const json& parameters, const std::strin
 void Gateway::Tick() {
   const double now = options_.clock();
   relay_.Tick(now);
-  recorder_.StopIfDone(now);
+  if (recorder_.StopIfDone(now)) RecordingEnded(recorder_.last_error());
   if (now >= next_status_) {
     PublishGatewayStatus(now);
     next_status_ = std::max(next_status_ + 1.0, now);

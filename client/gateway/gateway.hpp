@@ -103,6 +103,7 @@ class Gateway {
   void OnAck(const ack_t& ack);
   void Publish(uint32_t channel, int64_t utime, std::string payload);
   void WakeAll();
+  void RecordingEnded(const std::string& why);
   void RequestKeyframe();
   void PublishGatewayStatus(double now);
 

@@ -59,8 +59,7 @@ nlohmann::json SessionRecorder::Stop(double now) {
   if (!recorder_) return State(now, "no recording is running");
   last_events_ = recorder_->events();
   last_bytes_ = recorder_->bytes();
-  if (recorder_->failed())
-    last_error_ = "writing " + name_ + " failed after " + std::to_string(last_events_) + " events";
+  if (recorder_->failed()) last_error_ = recorder_->error();  // the disk is full: whole up to there
   recorder_.reset();  // closes the log
   stopped_ = now;
   return State(now);

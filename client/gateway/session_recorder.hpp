@@ -26,8 +26,12 @@ class SessionRecorder {
   nlohmann::json Start(double now);
   nlohmann::json Stop(double now);
   nlohmann::json Status(double now) const;
-  /// Stops a recording that failed or grew past kMaxBytes; true if it did.
+  /// Stops a recording that failed (a full disk) or grew past kMaxBytes; true if it did, and
+  /// then last_error() says why.
   bool StopIfDone(double now);
+  /// Why the last recording stopped on its own (what the disk-full log holds), or why the last
+  /// request failed; "" if none.
+  const std::string& last_error() const { return last_error_; }
 
   bool recording() const { return recorder_ != nullptr; }
   /// The path of a finished recording named `name` (no directories in it); nullopt if none.
