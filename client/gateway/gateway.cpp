@@ -157,9 +157,9 @@ void Gateway::WakeAll() {
   for (auto& [id, client] : clients_) client->Wake();
 }
 
-void Gateway::RequestKeyframe() {
+void Gateway::RequestKeyframe(bool always) {
   const double now = options_.clock();
-  if (now - last_refresh_ < kRefreshInterval) return;
+  if (!always && now - last_refresh_ < kRefreshInterval) return;
   last_refresh_ = now;
   relay_.Send(channels_.refresh, refresh_request_t{}, now, [](const CommandOutcome&, int64_t) {});
 }
@@ -269,7 +269,7 @@ void Gateway::CallService(int client, uint32_t service, uint32_t call, std::stri
     const double now = options_.clock();
     if (action == "start") {
       const json state = recorder_.Start(now);
-      if (recorder_.recording()) RequestKeyframe();  // the log starts with a whole frame and a checkpoint
+      if (recorder_.recording()) RequestKeyframe(true);  // the log starts with a whole frame and a checkpoint
       return respond(*protocol, state);
     }
     if (action == "stop") return respond(*protocol, recorder_.Stop(now));

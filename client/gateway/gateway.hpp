@@ -104,7 +104,9 @@ class Gateway {
   void Publish(uint32_t channel, int64_t utime, std::string payload);
   void WakeAll();
   void RecordingEnded(const std::string& why);
-  void RequestKeyframe();
+  /// A REFRESH, at most one each kRefreshInterval unless `always` (a recording that starts
+  /// needs its own: the answer to an earlier one may have come before it).
+  void RequestKeyframe(bool always = false);
   void PublishGatewayStatus(double now);
 
   /// Sends `command` on `channel` and answers `client` with `reply(result JSON)` when its ACK
