@@ -27,9 +27,9 @@ source "$(dirname "$0")/checks.sh"
 source "$(dirname "$0")/log_checks.sh"
 ctl() { "$flagctl" --prefix $prefix --timeout 3 "$@"; }
 
-# A second of the bus is about 2.6 MB with the default frames: 1.5 MB holds whole frames, the
-# checkpoint the recorder asked for and the commands.
-recorded_enough=1500000
+# A second of the bus is about 2.6 MB with the default frames: 4 MB holds the checkpoint and the
+# keyframe the recorder asked for, with room to spare, and the commands.
+recorded_enough=4000000
 
 "$flagd" --prefix $prefix --log-level warn >"$work/flagd.log" 2>&1 &
 server=$!
