@@ -52,7 +52,7 @@ Gateway::Gateway(Bus& bus, const Channels& channels, GatewayOptions options)
       channels_(channels),
       options_(std::move(options)),
       relay_(bus, NewGatewayClientId(), options_.command_timeout, options_.signer),
-      recorder_(bus, channels.AllChannels(), options_.record_directory) {
+      recorder_(bus, channels, options_.record_directory) {
   feeds_[kAcksChannel] = ChannelFeed(kAcksKept);
   started_ = status_window_start_ = next_status_ = options_.clock();
   SubscribeBus();
@@ -269,7 +269,8 @@ void Gateway::CallService(int client, uint32_t service, uint32_t call, std::stri
     const double now = options_.clock();
     if (action == "start") {
       const json state = recorder_.Start(now);
-      if (recorder_.recording()) RequestKeyframe(true);  // the log starts with a whole frame and a checkpoint
+      // The log starts with a whole frame and a checkpoint (asked again at Tick if none comes).
+      if (recorder_.KeyframeRequestDue(now)) RequestKeyframe(true);
       return respond(*protocol, state);
     }
     if (action == "stop") return respond(*protocol, recorder_.Stop(now));
@@ -361,6 +362,7 @@ void Gateway::Tick() {
   const double now = options_.clock();
   relay_.Tick(now);
   if (recorder_.StopIfDone(now)) RecordingEnded(recorder_.last_error());
+  if (recorder_.KeyframeRequestDue(now)) RequestKeyframe(true);
   if (now >= next_status_) {
     PublishGatewayStatus(now);
     next_status_ = std::max(next_status_ + 1.0, now);

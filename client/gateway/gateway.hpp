@@ -104,8 +104,8 @@ class Gateway {
   void Publish(uint32_t channel, int64_t utime, std::string payload);
   void WakeAll();
   void RecordingEnded(const std::string& why);
-  /// A REFRESH, at most one each kRefreshInterval unless `always` (a recording that starts
-  /// needs its own: the answer to an earlier one may have come before it).
+  /// A REFRESH, at most one each kRefreshInterval unless `always` (a recording needs its own:
+  /// the answer to an earlier one may have come before it started).
   void RequestKeyframe(bool always = false);
   void PublishGatewayStatus(double now);
 

@@ -29,8 +29,8 @@ bool PlainName(std::string_view name) {
 
 }  // namespace
 
-SessionRecorder::SessionRecorder(Bus& bus, std::string channel_regex, std::string directory)
-    : bus_(bus), channel_regex_(std::move(channel_regex)), directory_(std::move(directory)) {}
+SessionRecorder::SessionRecorder(Bus& bus, const Channels& channels, std::string directory)
+    : bus_(bus), channels_(channels), directory_(std::move(directory)) {}
 
 SessionRecorder::~SessionRecorder() = default;
 
@@ -45,7 +45,7 @@ nlohmann::json SessionRecorder::Start(double now) {
     name.insert(name.size() - 7, "-" + std::to_string(n));
   }
   try {
-    recorder_ = std::make_unique<LogRecorder>(bus_, channel_regex_, directory_ + "/" + name);
+    recorder_ = std::make_unique<LogRecorder>(bus_, channels_, directory_ + "/" + name);
   } catch (const std::exception& failure) {
     return State(now, failure.what());
   }
