@@ -233,15 +233,15 @@ int main(int argc, char** argv) {
   // Beside a busy neighbour, loops shared among more threads than the free cores run slower than
   // on one thread: share them among the free cores only.
   flagsim::WorkerPool::Shared().ShareFreeCoresOnly(true);
+  if (!options.resume_log.empty() && (render->parsed() || replay->parsed())) {
+    std::cerr << "flagd: --resume starts a server; it does not go with render or replay\n";
+    return 2;
+  }
   if (replay->parsed()) {
     options.replay.prefix = options.prefix;
     return flagsim::RunReplay(options.replay_log, options.replay);
   }
 
-  if (!options.resume_log.empty() && (render->parsed() || replay->parsed())) {
-    std::cerr << "flagd: --resume starts a server; it does not go with render or replay\n";
-    return 2;
-  }
   flagsim::Scene scene;
   std::optional<flagsim::ResumePoint> resume_point;
   try {

@@ -88,6 +88,8 @@ contains "every hash equal" "  every checkpoint hash equal"
 echo "-- what --resume refuses"
 expect 2 "recording into the log it reads" "$flagd" --resume "$work/inputs.lcmlog" --record-inputs "$work/inputs.lcmlog"
 contains "is the log --resume reads" "  says so"
+expect 2 "with flagd replay" "$flagd" --resume "$work/inputs.lcmlog" replay "$work/inputs.lcmlog"
+contains "does not go with render or replay" "  says so"
 expect 2 "with another scene" "$flagd" --resume "$work/inputs.lcmlog" --scene gale
 contains "excludes" "  says the two exclude each other"
 : >"$work/empty.lcmlog"
