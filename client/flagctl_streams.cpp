@@ -148,27 +148,28 @@ int Record(const Globals& globals, const std::string& path, double duration, con
   Link link(globals);
   std::unique_ptr<LogRecorder> recorder;
   try {
-    recorder = std::make_unique<LogRecorder>(link.bus, link.channels.AllChannels(), path);
+    recorder = std::make_unique<LogRecorder>(link.bus, link.channels, path);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "flagctl: %s\n", error.what());
     return kFailed;  // a file that cannot be written
   }
   const double start = MonotonicSeconds();
-  // A keyframe request first: the server answers with a CHECKPOINT and a full frame, so the log
-  // replays (flagd replay) and exports (flagctl export) from its beginning. Recorded meanwhile;
-  // nobody may answer (a log playing back), and the recording goes on regardless.
-  CommandClient(link.bus, link.channels, std::min(globals.timeout, 1.0), link.signer)
-      .Send(link.channels.refresh, refresh_request_t{});
+  // A keyframe request first, and again while no checkpoint has come (LogRecorder): the server
+  // answers with a CHECKPOINT and a full frame, so the log replays (flagd replay) and exports
+  // (flagctl export) from its beginning. Recorded meanwhile; nobody may answer (a log playing
+  // back), and the recording goes on regardless.
+  CommandClient refresh(link.bus, link.channels, std::min(globals.timeout, 1.0), link.signer);
   while (!stop.load() && !recorder->failed()) {
     const double now = MonotonicSeconds();
     if (duration > 0 && now - start >= duration) break;
     if (recorder->events() == 0 && now - start >= globals.timeout && duration == 0) break;
+    if (recorder->KeyframeRequestDue(now)) refresh.Send(link.channels.refresh, refresh_request_t{});
     link.bus.Handle(50);
   }
-  if (recorder->failed()) {
-    std::fprintf(stderr, "flagctl: writing %s failed after %lld events\n", path.c_str(),
-                 static_cast<long long>(recorder->events()));
-    return 1;
+  if (recorder->failed()) {  // the disk is full: the log ends at its last whole event
+    std::fprintf(stderr, "flagctl: recording stopped after %.1f s: %s\n", MonotonicSeconds() - start,
+                 recorder->error().c_str());
+    return kFailed;
   }
   std::printf("%s: %lld events, %.1f KB in %.1f s\n", path.c_str(),
               static_cast<long long>(recorder->events()), recorder->bytes() / 1024.0,

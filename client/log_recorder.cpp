@@ -1,37 +1,31 @@
 #include "client/log_recorder.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-#include <stdexcept>
-
 #include "messages/utime.hpp"
 
 namespace flagsim {
 
-LogRecorder::LogRecorder(Bus& bus, const std::string& channel_regex, const std::string& path)
-    : bus_(bus), log_(std::make_unique<lcm::LogFile>(path, "w")) {
-  if (!log_->good()) throw std::runtime_error("cannot write the log file " + path);
+LogRecorder::LogRecorder(Bus& bus, const Channels& channels, const std::string& path)
+    : bus_(bus), checkpoint_channel_(channels.checkpoint), log_(path) {
   // A deep queue: a recorder must not drop what arrives in bursts between two Handle() calls.
   subscription_ = bus.Subscribe(
-      channel_regex,
+      channels.AllChannels(),
       [this](const std::string& channel, const uint8_t* data, size_t size) { Write(channel, data, size); },
       10000);
 }
 
 LogRecorder::~LogRecorder() { bus_.Unsubscribe(subscription_); }
 
+bool LogRecorder::KeyframeRequestDue(double now) {
+  if (checkpoints_ > 0 || asks_ >= kAsks || (asks_ > 0 && now - asked_ < kAskInterval)) return false;
+  ++asks_;
+  asked_ = now;
+  return true;
+}
+
+// Stamped with the receive time, as lcm-logger stamps events. A failed write ends the log and
+// returns nothing to LCM's C dispatch.
 void LogRecorder::Write(const std::string& channel, const uint8_t* data, size_t size) {
-  lcm::LogEvent event;
-  event.eventnum = events_;
-  event.timestamp = UnixMicros();  // receive time, as lcm-logger stamps events
-  event.channel = channel;
-  event.datalen = static_cast<int32_t>(size);
-  event.data = const_cast<uint8_t*>(data);
-  if (failed_ || log_->writeEvent(&event) != 0) {
-    failed_ = true;  // no exceptions through LCM's C dispatch
-    return;
-  }
-  ++events_;
-  bytes_ += size;
+  if (log_.Write(UnixMicros(), channel, data, size) && channel == checkpoint_channel_) ++checkpoints_;
 }
 
 }  // namespace flagsim

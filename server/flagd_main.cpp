@@ -1,9 +1,10 @@
 // flagd: the flag simulation server. Steps the flag in real time (or as fast as it can), draws
 // and streams its frames as tiles, publishes STATE, PARAMS and STATUS, and takes WIND, PARAM,
 // CAMERA, KEYFRAME and REFRESH commands over LCM, journaling what replay needs (APPLIED,
-// CHECKPOINT), with --record-inputs into a log of its own too. `flagd render` runs a scene
-// offline instead, into an LCM log and PNG frames (render_command.hpp); `flagd replay` steps a
-// recorded session again and checks it (replay_command.hpp).
+// CHECKPOINT), with --record-inputs into a log of its own too; --resume starts a session again
+// from such a log's last checkpoint (resume_point.hpp). `flagd render` runs a scene offline
+// instead, into an LCM log and PNG frames (render_command.hpp); `flagd replay` steps a recorded
+// session again and checks it (replay_command.hpp).
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
@@ -13,8 +14,10 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "client/cli_checks.hpp"
 #include "messages/bus.hpp"
@@ -25,6 +28,7 @@
 #include "server/replay_command.hpp"
 #include "server/scene/parameter_table.hpp"
 #include "server/scene/scene_file.hpp"
+#include "server/service/resume_point.hpp"
 #include "server/service/server.hpp"
 
 namespace {
@@ -46,6 +50,7 @@ struct Options {
   double render_fps = std::nan("");    ///< Hz; NaN: the scene's frame_rate
   int render_threads = 0;              ///< 0: the scene's threads
   std::vector<std::string> key_files;  ///< --key-file: commands must be signed with one of their keys
+  std::string resume_log;              ///< --resume LOG: start from its last checkpoint
 };
 
 /// Every key in the --key-file files. Throws std::runtime_error naming the file when one cannot
@@ -78,6 +83,37 @@ flagsim::Scene BuildScene(const Options& options) {
   const std::string problem = flagsim::ParameterTable::CheckConsistency(scene);
   if (!problem.empty()) throw flagsim::SceneError(problem);
   return scene;
+}
+
+/// --resume: the log's last whole checkpoint. Throws SceneError (a usage error) when there is
+/// none, or when --record-inputs would write over the log it reads.
+flagsim::ResumePoint FindResume(const Options& options) {
+  std::error_code error;
+  if (!options.server.inputs_log.empty() &&
+      std::filesystem::equivalent(options.server.inputs_log, options.resume_log, error)) {
+    throw flagsim::SceneError("--record-inputs " + options.server.inputs_log +
+                              " is the log --resume reads; record into a new file");
+  }
+  flagsim::ResumePoint point = flagsim::FindResumePoint(options.resume_log, options.prefix);
+  if (!point.error.empty()) throw flagsim::SceneError("--resume: " + point.error);
+  return point;
+}
+
+/// A resumed server's state must be its checkpoint's, bit for bit: says so, with what is lost
+/// after the checkpoint, and returns true; or says how it differs and returns false.
+bool ReportResume(const Options& options, const flagsim::ResumePoint& point, const flagsim::Server& server) {
+  const uint64_t hash = server.session().simulation().Hash();
+  if (hash != point.state_hash) {
+    std::fprintf(stderr,
+                 "flagd: --resume %s: the resumed state's hash %016llx is not the checkpoint's %016llx\n",
+                 options.resume_log.c_str(), static_cast<unsigned long long>(hash),
+                 static_cast<unsigned long long>(point.state_hash));
+    return false;
+  }
+  std::fprintf(stderr, "flagd: resumed from %s, state hash %016llx, equal to the checkpoint's: %s\n",
+               options.resume_log.c_str(), static_cast<unsigned long long>(hash),
+               flagsim::DescribeResume(point).c_str());
+  return true;
 }
 
 /// `flagd render`: its own copy of the scene options, so that they read naturally after it.
@@ -145,16 +181,25 @@ int main(int argc, char** argv) {
                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
   app.add_option("--prefix", options.prefix, "channel prefix, so several servers share a bus")
       ->capture_default_str();
-  app.add_option("--scene", options.scene, "a preset (breeze, calm, gale, hanging) or a scene file (.toml)")
-      ->capture_default_str();
-  app.add_option("--set", options.assignments, "override a parameter: NAME=VALUE (repeatable)");
+  CLI::Option* scene_option = app.add_option("--scene", options.scene,
+                                             "a preset (breeze, calm, gale, hanging) or a scene file (.toml)")
+                                  ->capture_default_str();
+  CLI::Option* set_option =
+      app.add_option("--set", options.assignments, "override a parameter: NAME=VALUE (repeatable)");
   app.add_flag("--fast", options.server.fast, "step as fast as possible instead of in real time");
-  app.add_option("--duration", options.server.duration,
-                 "stop after this many simulated seconds (0: run until stopped)")
+  app.add_option(
+         "--duration", options.server.duration,
+         "stop after this many simulated seconds, counted from where it starts (0: run until stopped)")
       ->check(flagsim::ZeroOrMore());
   app.add_option("--record-inputs", options.server.inputs_log,
                  "also write what a replay needs (each applied command, the checkpoints) into this LCM "
-                 "log, for `flagd replay`");
+                 "log, for `flagd replay` and `flagd --resume`");
+  CLI::Option* resume =
+      app.add_option("--resume", options.resume_log,
+                     "start again from the last checkpoint in this log (a --record-inputs log of a server "
+                     "that was killed or stopped), with the scene as it stood there; says how much came "
+                     "after the checkpoint and is lost")
+          ->check(CLI::ExistingFile);
   app.add_option(
          "--key-file", options.key_files,
          "take only commands signed with a key in this file (flagctl keygen -o FILE makes one; "
@@ -163,6 +208,8 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
+  // A resumed session's scene is the checkpoint's; it is changed afterwards as any session is.
+  resume->excludes(scene_option)->excludes(set_option);
   CLI::App* render = AddRenderCommand(app, options);
   CLI::App* replay = app.add_subcommand(
       "replay",
@@ -186,14 +233,24 @@ int main(int argc, char** argv) {
   // Beside a busy neighbour, loops shared among more threads than the free cores run slower than
   // on one thread: share them among the free cores only.
   flagsim::WorkerPool::Shared().ShareFreeCoresOnly(true);
+  if (!options.resume_log.empty() && (render->parsed() || replay->parsed())) {
+    std::cerr << "flagd: --resume starts a server; it does not go with render or replay\n";
+    return 2;
+  }
   if (replay->parsed()) {
     options.replay.prefix = options.prefix;
     return flagsim::RunReplay(options.replay_log, options.replay);
   }
 
   flagsim::Scene scene;
+  std::optional<flagsim::ResumePoint> resume_point;
   try {
-    scene = BuildScene(options);
+    if (!options.resume_log.empty()) {
+      resume_point = FindResume(options);
+      scene = resume_point->snapshot.scene;
+    } else {
+      scene = BuildScene(options);
+    }
     if (render->parsed()) {
       ApplyRenderOverrides(options, &scene);
       CheckRender(options, scene);
@@ -218,7 +275,12 @@ int main(int argc, char** argv) {
   try {
     flagsim::Bus bus(flagsim::Bus::WithReceiveBuffer(options.lcm_url, 1 << 20));
     const flagsim::Channels channels(options.prefix);
-    flagsim::Server server(bus, channels, scene, options.server);
+    const std::unique_ptr<flagsim::Server> resumed_or_new =
+        resume_point
+            ? std::make_unique<flagsim::Server>(bus, channels, resume_point->snapshot, options.server)
+            : std::make_unique<flagsim::Server>(bus, channels, scene, options.server);
+    flagsim::Server& server = *resumed_or_new;
+    if (resume_point && !ReportResume(options, *resume_point, server)) return 1;
     std::signal(SIGINT, OnSignal);
     std::signal(SIGTERM, OnSignal);
     spdlog::info("flagd: scene '{}' ({}x{} nodes), {} on {} with prefix {}", scene.name, scene.sim.cols,

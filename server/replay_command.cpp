@@ -20,6 +20,14 @@ int RunReplay(const std::string& path, const ReplayOptions& options) {
              " on " + std::to_string(report.threads) + " thread(s): " + std::to_string(report.commands) +
              " command(s) applied, " + std::to_string(report.states_checked) + " state and " +
              std::to_string(report.checkpoints_checked) + " checkpoint hash(es) checked");
+  std::fprintf(stderr, "flagd replay: the first checkpoint's state hash %016llx",
+               static_cast<unsigned long long>(report.first_hash));
+  if (report.last_checkpoint_step >= 0) {
+    std::fprintf(stderr, "; the last checked: step %lld, state hash %016llx",
+                 static_cast<long long>(report.last_checkpoint_step),
+                 static_cast<unsigned long long>(report.last_checkpoint_hash));
+  }
+  std::fprintf(stderr, "\n");
   if (!report.log_end.empty())
     std::fprintf(stderr, "flagd replay: the log ends early: %s\n", report.log_end.c_str());
   if (!report.divergence.empty()) {

@@ -1,5 +1,7 @@
 #include "client/gateway/gateway.hpp"
 
+#include <cstdio>
+
 #include "client/gateway/bus_json.hpp"
 #include "client/gateway/command_requests.hpp"
 #include "client/gateway/compressed_image.hpp"
@@ -50,7 +52,7 @@ Gateway::Gateway(Bus& bus, const Channels& channels, GatewayOptions options)
       channels_(channels),
       options_(std::move(options)),
       relay_(bus, NewGatewayClientId(), options_.command_timeout, options_.signer),
-      recorder_(bus, channels.AllChannels(), options_.record_directory) {
+      recorder_(bus, channels, options_.record_directory) {
   feeds_[kAcksChannel] = ChannelFeed(kAcksKept);
   started_ = status_window_start_ = next_status_ = options_.clock();
   SubscribeBus();
@@ -142,13 +144,22 @@ void Gateway::OnAck(const ack_t& ack) {
   WakeAll();
 }
 
+// A recording that stopped on its own (a full disk): said on stderr and to every client, beside
+// the record service's answers, which carry it too.
+void Gateway::RecordingEnded(const std::string& why) {
+  std::fprintf(stderr, "flagctl serve: recording stopped: %s\n", why.c_str());
+  for (auto& [id, client] : clients_)
+    client->protocol().SendStatus(ClientProtocol::kError, "/flag/record: " + why);
+  WakeAll();
+}
+
 void Gateway::WakeAll() {
   for (auto& [id, client] : clients_) client->Wake();
 }
 
-void Gateway::RequestKeyframe() {
+void Gateway::RequestKeyframe(bool always) {
   const double now = options_.clock();
-  if (now - last_refresh_ < kRefreshInterval) return;
+  if (!always && now - last_refresh_ < kRefreshInterval) return;
   last_refresh_ = now;
   relay_.Send(channels_.refresh, refresh_request_t{}, now, [](const CommandOutcome&, int64_t) {});
 }
@@ -258,7 +269,8 @@ void Gateway::CallService(int client, uint32_t service, uint32_t call, std::stri
     const double now = options_.clock();
     if (action == "start") {
       const json state = recorder_.Start(now);
-      if (recorder_.recording()) RequestKeyframe();  // the log starts with a whole frame and a checkpoint
+      // The log starts with a whole frame and a checkpoint (asked again at Tick if none comes).
+      if (recorder_.KeyframeRequestDue(now)) RequestKeyframe(true);
       return respond(*protocol, state);
     }
     if (action == "stop") return respond(*protocol, recorder_.Stop(now));
@@ -349,7 +361,8 @@ void Gateway::SetParameters(int client, const json& parameters, const std::strin
 void Gateway::Tick() {
   const double now = options_.clock();
   relay_.Tick(now);
-  recorder_.StopIfDone(now);
+  if (recorder_.StopIfDone(now)) RecordingEnded(recorder_.last_error());
+  if (recorder_.KeyframeRequestDue(now)) RequestKeyframe(true);
   if (now >= next_status_) {
     PublishGatewayStatus(now);
     next_status_ = std::max(next_status_ + 1.0, now);

@@ -103,7 +103,10 @@ class Gateway {
   void OnAck(const ack_t& ack);
   void Publish(uint32_t channel, int64_t utime, std::string payload);
   void WakeAll();
-  void RequestKeyframe();
+  void RecordingEnded(const std::string& why);
+  /// A REFRESH, at most one each kRefreshInterval unless `always` (a recording needs its own:
+  /// the answer to an earlier one may have come before it started).
+  void RequestKeyframe(bool always = false);
   void PublishGatewayStatus(double now);
 
   /// Sends `command` on `channel` and answers `client` with `reply(result JSON)` when its ACK

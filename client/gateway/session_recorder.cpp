@@ -29,8 +29,8 @@ bool PlainName(std::string_view name) {
 
 }  // namespace
 
-SessionRecorder::SessionRecorder(Bus& bus, std::string channel_regex, std::string directory)
-    : bus_(bus), channel_regex_(std::move(channel_regex)), directory_(std::move(directory)) {}
+SessionRecorder::SessionRecorder(Bus& bus, const Channels& channels, std::string directory)
+    : bus_(bus), channels_(channels), directory_(std::move(directory)) {}
 
 SessionRecorder::~SessionRecorder() = default;
 
@@ -45,7 +45,7 @@ nlohmann::json SessionRecorder::Start(double now) {
     name.insert(name.size() - 7, "-" + std::to_string(n));
   }
   try {
-    recorder_ = std::make_unique<LogRecorder>(bus_, channel_regex_, directory_ + "/" + name);
+    recorder_ = std::make_unique<LogRecorder>(bus_, channels_, directory_ + "/" + name);
   } catch (const std::exception& failure) {
     return State(now, failure.what());
   }
@@ -59,8 +59,7 @@ nlohmann::json SessionRecorder::Stop(double now) {
   if (!recorder_) return State(now, "no recording is running");
   last_events_ = recorder_->events();
   last_bytes_ = recorder_->bytes();
-  if (recorder_->failed())
-    last_error_ = "writing " + name_ + " failed after " + std::to_string(last_events_) + " events";
+  if (recorder_->failed()) last_error_ = recorder_->error();  // the disk is full: whole up to there
   recorder_.reset();  // closes the log
   stopped_ = now;
   return State(now);

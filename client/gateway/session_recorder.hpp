@@ -11,6 +11,7 @@
 
 #include "client/log_recorder.hpp"
 #include "messages/bus.hpp"
+#include "messages/channels.hpp"
 
 namespace flagsim::gateway {
 
@@ -18,18 +19,25 @@ class SessionRecorder {
  public:
   static constexpr uint64_t kMaxBytes = uint64_t(4) << 30;  ///< a recording stops at this size
 
-  /// Logs go into `directory` (made when the first recording starts).
-  SessionRecorder(Bus& bus, std::string channel_regex, std::string directory);
+  /// Records every channel of `channels`; logs go into `directory` (made when the first
+  /// recording starts).
+  SessionRecorder(Bus& bus, const Channels& channels, std::string directory);
   ~SessionRecorder();
 
   /// Each answers with the recording's state (schemas/record_result.json).
   nlohmann::json Start(double now);
   nlohmann::json Stop(double now);
   nlohmann::json Status(double now) const;
-  /// Stops a recording that failed or grew past kMaxBytes; true if it did.
+  /// Stops a recording that failed (a full disk) or grew past kMaxBytes; true if it did, and
+  /// then last_error() says why.
   bool StopIfDone(double now);
+  /// Why the last recording stopped on its own (what the disk-full log holds), or why the last
+  /// request failed; "" if none.
+  const std::string& last_error() const { return last_error_; }
 
   bool recording() const { return recorder_ != nullptr; }
+  /// Whether the recording needs a keyframe request now (LogRecorder::KeyframeRequestDue).
+  bool KeyframeRequestDue(double now) { return recorder_ && recorder_->KeyframeRequestDue(now); }
   /// The path of a finished recording named `name` (no directories in it); nullopt if none.
   std::optional<std::string> FinishedFile(std::string_view name) const;
 
@@ -37,7 +45,7 @@ class SessionRecorder {
   nlohmann::json State(double now, const std::string& error = "") const;
 
   Bus& bus_;
-  std::string channel_regex_;
+  const Channels& channels_;
   std::string directory_;
   std::unique_ptr<LogRecorder> recorder_;
   std::string name_;  ///< the current or last recording's file name

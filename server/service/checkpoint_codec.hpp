@@ -12,7 +12,7 @@
 
 namespace flagsim {
 
-/// `reason`: "start", "refresh" or "periodic".
+/// `reason`: "start", "refresh", "periodic", "end" or "resume".
 checkpoint_t MakeCheckpointMessage(const SessionSnapshot& snapshot, const std::string& reason, int64_t utime);
 
 /// "" and `*snapshot` filled, or what is wrong with the message (then `*snapshot` is untouched).

@@ -40,7 +40,7 @@ bool InputsLog::Close() {
 }
 
 void InputsLog::Fail(const std::string& what) {
-  spdlog::error("recording inputs to {} stopped: {}; the server goes on", path_, what);
+  spdlog::error("recording inputs: {}; the server goes on, without a record", what);
   failed_ = true;
   log_.reset();
 }

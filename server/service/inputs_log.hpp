@@ -1,15 +1,19 @@
 // flagd's own record of its inputs (`flagd --record-inputs LOG`): the journal's stream (each
 // CHECKPOINT and APPLIED command, journal.hpp) goes onto the bus as always and into an LCM event
-// log as well, which `flagd replay` steps again. The log holds nothing else: its checkpoints
-// (every node's position and velocity, each 5 s of simulated time) make most of it, about
-// 300 KB a minute with the default 32 x 24 flag, where a recording of the bus takes megabytes
-// a second.
+// log as well, which `flagd replay` steps again and `flagd --resume` starts again from; STATUS
+// goes in too, once a second, so that a resume knows how far the server had got. The log holds
+// nothing else: its checkpoints (every node's position and velocity, each 5 s of simulated
+// time) make most of it, about 300 KB a minute with the default 32 x 24 flag, where a recording
+// of the bus takes megabytes a second.
 //
-//   journal => InputsLog::Publish => bus (always)
-//                                 => log, stamped on simulated time (log_publisher.hpp)
+//   journal, STATUS => InputsLog::Publish => bus (always)
+//                                         => log, stamped on simulated time (log_publisher.hpp)
 //
-// A write that fails (a full disk) ends the log, with an error logged, and never the server:
-// the bus goes on receiving everything.
+// Each event reaches the file whole as it is published, and the file is synced once a second
+// (EventLogWriter): a server killed outright leaves all it recorded, one that loses its power
+// all but the last second. A write that fails (a full disk) ends the log at its last whole
+// event, with an error logged that says so, and never the server: the bus goes on receiving
+// everything.
 #pragma once
 
 #include <cstdint>

@@ -7,7 +7,13 @@ namespace flagsim {
 
 void Journal::AtBoundary(const Session& session, int64_t utime) {
   const int64_t step = session.simulation().state().step;
-  if (PeriodicCheckpointAt(step)) PublishCheckpoint(session, step == 0 ? "start" : "periodic", utime);
+  if (PeriodicCheckpointAt(step) && step != resumed_step_)
+    PublishCheckpoint(session, step == 0 ? "start" : "periodic", utime);
+}
+
+void Journal::Resumed(const Session& session, int64_t utime) {
+  resumed_step_ = session.simulation().state().step;
+  PublishCheckpoint(session, "resume", utime);
 }
 
 void Journal::Refresh(const Session& session, int64_t utime) { PublishCheckpoint(session, "refresh", utime); }

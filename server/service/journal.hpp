@@ -1,8 +1,9 @@
 // The replay stream: what a session needs to be stepped again bit for bit, published beside
 // the others so that any recording of the bus (flagctl record, lcm-logger) carries it.
 //
-//   CHECKPOINT  the session at a step boundary (Session::Snapshot): at the start (step 0),
-//               every kCheckpointSteps steps, at each keyframe request, and at the end
+//   CHECKPOINT  the session at a step boundary (Session::Snapshot): at the start (step 0, or
+//               where a resumed session starts), every kCheckpointSteps steps, at each keyframe
+//               request, and at the end
 //   APPLIED     each command that changed the session, as it came, with the step at whose
 //               start it took effect, in the order applied
 //
@@ -30,8 +31,12 @@ class Journal {
   /// Publishes to `publisher`; with none, nothing.
   Journal(Publisher* publisher, const Channels& channels) : publisher_(publisher), channels_(channels) {}
 
-  /// At every step boundary, the first included: the periodic CHECKPOINT when one falls here.
+  /// At every step boundary, the first included: the periodic CHECKPOINT when one falls here
+  /// (unless the session was resumed here, which has its checkpoint already).
   void AtBoundary(const Session& session, int64_t utime);
+  /// A session resumed from a checkpoint (flagd --resume), before its first boundary: a
+  /// "resume" CHECKPOINT, where a replay of what follows starts.
+  void Resumed(const Session& session, int64_t utime);
   /// A keyframe request: a CHECKPOINT now, so that a recording that starts with a viewer's
   /// request can be replayed from there.
   void Refresh(const Session& session, int64_t utime);
@@ -52,6 +57,7 @@ class Journal {
 
   Publisher* publisher_;
   const Channels& channels_;
+  int64_t resumed_step_ = -1;  ///< the step a resumed session started at; -1: none
 };
 
 }  // namespace flagsim

@@ -6,6 +6,9 @@
 //   Enqueue   paced: stamped when PublishPacing would let it leave a live server, counted on
 //             simulated time from now (tiles, FRAME), and written once the clock gets there, so
 //             that it falls between the STATE messages as it would live
+//
+// The file is written by EventLogWriter: each event whole as it is written, synced once a
+// second, and ended at its last whole event by a write that fails (a full disk).
 #pragma once
 
 #include <cstdint>
@@ -14,12 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "messages/event_log_writer.hpp"
 #include "messages/publisher.hpp"
 #include "server/service/publish_pacing.hpp"
-
-namespace lcm {
-class LogFile;
-}
 
 namespace flagsim {
 
@@ -33,7 +33,8 @@ class LogPublisher final : public Publisher {
   LogPublisher& operator=(const LogPublisher&) = delete;
 
   /// Moves the clock to `time` (s, simulated, never backwards): paced messages due by then
-  /// are written. Throws std::runtime_error if a write fails (a full disk).
+  /// are written. Throws std::runtime_error if a write fails (a full disk), saying what the log
+  /// holds (EventLogWriter::error).
   void AdvanceTo(double time);
   /// us since the Unix epoch at simulated time `time`: what events and messages are stamped.
   int64_t UtimeAt(double time) const;
@@ -45,12 +46,12 @@ class LogPublisher final : public Publisher {
   /// Queues a message to go out paced, from now on.
   void Enqueue(const std::string& channel, std::vector<uint8_t> bytes);
 
-  /// Writes what is still paced and flushes the file. Throws std::runtime_error on failure.
+  /// Writes what is still paced, syncs and closes the file. Throws std::runtime_error on failure.
   void Close();
 
   const std::string& path() const { return path_; }
-  int64_t events() const { return events_; }
-  uint64_t bytes() const { return bytes_; }  ///< of the file so far
+  int64_t events() const { return log_.events(); }
+  uint64_t bytes() const { return log_.bytes(); }  ///< of the file so far
 
  private:
   struct Paced {
@@ -61,13 +62,11 @@ class LogPublisher final : public Publisher {
   void Write(double time, const std::string& channel, const uint8_t* data, size_t size);
 
   std::string path_;
-  std::unique_ptr<lcm::LogFile> log_;
+  EventLogWriter log_;
   int64_t start_utime_;
   double time_ = 0;  ///< s, simulated: the clock
   PublishPacing pacing_;
   std::deque<Paced> paced_;  ///< in departure order
-  int64_t events_ = 0;
-  uint64_t bytes_ = 0;
 };
 
 }  // namespace flagsim

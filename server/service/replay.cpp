@@ -63,6 +63,8 @@ bool Replayer::Handle(const std::string& channel, const std::vector<uint8_t>& da
       return false;
     }
     AdvanceTo(checkpoint->step);
+    report_.last_checkpoint_step = checkpoint->step;
+    report_.last_checkpoint_hash = uint64_t(checkpoint->state_hash);
     return Check("checkpoint", checkpoint->step, uint64_t(checkpoint->state_hash));
   }
   if (!started()) return true;
@@ -95,6 +97,7 @@ bool Replayer::Resume(const checkpoint_t& checkpoint) {
   session_ = std::make_unique<Session>(snapshot);
   report_.first_step = report_.last_step = checkpoint.step;
   report_.first_reason = checkpoint.reason;
+  report_.first_hash = uint64_t(checkpoint.state_hash);
   report_.threads = snapshot.simulation.params.threads;
   return true;
 }

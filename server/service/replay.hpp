@@ -24,7 +24,10 @@ struct ReplayOptions {
 struct ReplayReport {
   std::string error;           ///< "" or why nothing could be replayed (no checkpoint, unreadable log)
   int64_t first_step = -1;     ///< the checkpoint resumed from
-  std::string first_reason;    ///< its reason: start, refresh, periodic
+  std::string first_reason;    ///< its reason: start, refresh, periodic, end, resume
+  uint64_t first_hash = 0;     ///< its state hash
+  int64_t last_checkpoint_step = -1;  ///< the last checkpoint whose hash was checked (equal or not)
+  uint64_t last_checkpoint_hash = 0;  ///< its recorded state hash
   int64_t last_step = -1;      ///< the last step replayed to
   int threads = 0;             ///< replayed on
   int64_t commands = 0;        ///< APPLIED commands applied

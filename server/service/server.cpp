@@ -20,14 +20,25 @@ constexpr double kKeyframeWait = 0.001;  ///< s, the loop's sleep while a keyfra
 }  // namespace
 
 Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const ServerOptions& options)
+    : Server(bus, channels, Start{&scene, nullptr}, options) {}
+
+Server::Server(Bus& bus, const Channels& channels, const SessionSnapshot& resumed,
+               const ServerOptions& options)
+    : Server(bus, channels, Start{nullptr, &resumed}, options) {}
+
+// The inputs log's events are stamped on simulated time, counted from its start (time 0).
+Server::Server(Bus& bus, const Channels& channels, Start start, const ServerOptions& options)
     : bus_(bus),
       channels_(channels),
       options_(options),
-      session_(scene),
+      session_(start.resumed ? Session(*start.resumed) : Session(*start.scene)),
+      resumed_(start.resumed != nullptr),
+      start_time_(session_.simulation().state().time),
       presence_(bus, channels, options.clock),
       inputs_(options.inputs_log.empty()
                   ? nullptr
-                  : std::make_unique<InputsLog>(bus, options.inputs_log, UnixMicros())),
+                  : std::make_unique<InputsLog>(bus, options.inputs_log,
+                                                UnixMicros() - std::llround(start_time_ * 1e6))),
       journal_(inputs_ ? static_cast<Publisher*>(inputs_.get()) : &bus, channels),
       intake_(bus, channels, session_, stats_, options.command_keys, options.clock),
       paced_(bus),
@@ -39,7 +50,7 @@ Server::Server(Bus& bus, const Channels& channels, const Scene& scene, const Ser
 void Server::Run(const std::atomic<bool>& stop) {
   while (!stop.load()) {
     const double wait = Tick(options_.clock());
-    if (options_.duration > 0 && session_.simulation().state().time >= options_.duration) break;
+    if (Ended()) break;
     bus_.Handle(static_cast<int>(std::ceil(wait * 1000)));
   }
   intake_.FlushPending();
@@ -50,11 +61,16 @@ void Server::Run(const std::atomic<bool>& stop) {
   PublishStatus(options_.clock());
 }
 
+bool Server::Ended() const {
+  return options_.duration > 0 && session_.simulation().state().time >= start_time_ + options_.duration;
+}
+
 double Server::Tick(double now) {
   if (start_wall_ < 0) {
     start_wall_ = last_tick_ = next_second_ = window_wall_start_ = now;
     window_sim_start_ = session_.simulation().state().time;
     window_bytes_start_ = bus_.bytes_published();
+    if (resumed_) journal_.Resumed(session_, UnixMicros());
     AtBoundary();  // the session's first checkpoint, STATE and frame
   }
   bus_.HandleAll();
@@ -79,10 +95,7 @@ void Server::StepDue(double now) {
   accumulator_ = options_.fast ? 0.0 : std::min(accumulator_ + (now - last_tick_), kMaxCatchUp);
   last_tick_ = now;
   const double deadline = now + (options_.fast ? kFastBatch : kSteppingBatch);
-  const auto ended = [this] {
-    return options_.duration > 0 && session_.simulation().state().time >= options_.duration;
-  };
-  while ((options_.fast || accumulator_ >= dt) && !ended()) {
+  while ((options_.fast || accumulator_ >= dt) && !Ended()) {
     const double start = options_.clock();
     integrator_replaced_ |= session_.Step();
     const double end = options_.clock();
@@ -214,7 +227,8 @@ void Server::PublishStatus(double now) {
   status.server_id = presence_.id();
   status.other_servers = presence_.others();
   status.command_authentication = intake_.Authentication();
-  bus_.Publish(channels_.status, status);
+  // Into the inputs log too: where the server stood each second, for a resume to say what it lost.
+  (inputs_ ? static_cast<Publisher&>(*inputs_) : bus_).Publish(channels_.status, status);
   last_status_ = status;
   stats_.ResetWindow();
   window_wall_start_ = now;

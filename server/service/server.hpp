@@ -48,16 +48,20 @@ namespace flagsim {
 
 struct ServerOptions {
   bool fast = false;       ///< step as fast as possible instead of in real time
-  double duration = 0;     ///< s of simulated time to run, 0 = until stopped
-  std::string inputs_log;  ///< if set, the journal also goes into this LCM log (inputs_log.hpp)
+  double duration = 0;     ///< s of simulated time to run from where it starts, 0 = until stopped
+  std::string inputs_log;  ///< if set, the journal (and STATUS) also goes into this LCM log (inputs_log.hpp)
   std::function<double()> clock = MonotonicSeconds;  ///< s, monotonic: the loop's time
   std::vector<CommandKey> command_keys;  ///< if any, commands must be signed with one (--key-file)
 };
 
 class Server {
  public:
-  /// Throws std::runtime_error naming the file if options.inputs_log cannot be written.
+  /// A new session of `scene`. Throws std::runtime_error naming the file if options.inputs_log
+  /// cannot be written.
   Server(Bus& bus, const Channels& channels, const Scene& scene, const ServerOptions& options);
+  /// A session resumed from a checkpoint (resume_point.hpp): it steps on from there as the
+  /// session it was taken from would have, and its journal starts with a "resume" CHECKPOINT.
+  Server(Bus& bus, const Channels& channels, const SessionSnapshot& resumed, const ServerOptions& options);
 
   /// Runs until `stop` becomes true or the duration is reached; then the end CHECKPOINT (and
   /// closes the inputs log), the last STATE and STATUS.
@@ -81,6 +85,13 @@ class Server {
   static constexpr double kTablesPerSecond = 10;  ///< most answers to tables-only REFRESH questions
 
  private:
+  /// What the session starts from: a scene, or a checkpoint's snapshot (then `resumed`).
+  struct Start {
+    const Scene* scene = nullptr;
+    const SessionSnapshot* resumed = nullptr;
+  };
+  Server(Bus& bus, const Channels& channels, Start start, const ServerOptions& options);
+  bool Ended() const;  ///< the duration has run
   void StepDue(double now);
   void AfterStep();
   void AtBoundary();
@@ -96,6 +107,8 @@ class Server {
   const Channels& channels_;
   ServerOptions options_;
   Session session_;
+  const bool resumed_;       ///< from a checkpoint: the journal's first is a "resume" one
+  const double start_time_;  ///< s, simulated: where the session starts (the duration counts from it)
   ServerStats stats_;
   ServerPresence presence_;            ///< this server's id, and the others heard on the prefix
   std::unique_ptr<InputsLog> inputs_;  ///< null unless recording its inputs

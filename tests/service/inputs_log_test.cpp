@@ -1,9 +1,11 @@
 // flagd's own record of its inputs: a server on an in-process bus takes commands while it writes
-// the log, and `flagd replay`'s engine steps the log again to the same hashes; a log that cannot
-// be written ends, and the server and the bus go on.
+// the log, and `flagd replay`'s engine steps the log again to the same hashes; a server resumed
+// from the log of one killed mid-session steps on as the original did; a log that cannot be
+// written ends, and the server and the bus go on.
 #include "server/service/inputs_log.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cstdio>
@@ -11,7 +13,9 @@
 #include <string>
 
 #include "client/command_client.hpp"
+#include "messages/event_log_reader.hpp"
 #include "server/service/replay.hpp"
+#include "server/service/resume_point.hpp"
 #include "server/service/server.hpp"
 #include "tests/messages/message_fixtures.hpp"
 #include "tests/service/log_fixtures.hpp"
@@ -72,6 +76,63 @@ TEST(InputsLog, AServersOwnRecordReplaysBitForBit) {
     EXPECT_EQ(report.log_end, "");
   }
   std::remove(path.c_str());
+}
+
+/// The log at `path` without its last event, as a server killed before it wrote it leaves it.
+void DropLastEvent(const std::string& path) {
+  EventLogReader reader(path);
+  LogEvent event;
+  uint64_t last = 0;
+  while (reader.Next(&event, [](const std::string&) { return false; })) last = event.offset;
+  ASSERT_EQ(truncate(path.c_str(), off_t(last)), 0);
+}
+
+// The original runs to its end (step 5500); cut before its end checkpoint, its log resumes at
+// the periodic one at 5000, and the resumed server, given the rest of the time, ends where the
+// original did, bit for bit, with a record of its own that replays from its "resume" checkpoint.
+TEST(InputsLog, AServerResumedFromItsRecordStepsOnAsTheOriginal) {
+  const std::string original_log = testing::TempPath("original.lcmlog");
+  const std::string resumed_log = testing::TempPath("resumed.lcmlog");
+  const Channels channels;
+  Bus bus("memq://");
+  const std::atomic<bool> stop{false};
+  testing::SimulatedClock clock;
+  ServerOptions options = clock.ServerOnIt();
+  options.duration = 11;
+  options.inputs_log = original_log;
+  Server original(bus, channels, SmallWithoutFrames(), options);
+  CommandClient client(bus, channels, 5.0, {}, clock.Reader());
+  client.WhileWaiting([&] { clock.Step(original); });
+  ASSERT_EQ(client.Send(channels.wind, testing::SomeWindCommand()).result, CommandOutcome::kAccepted);
+  clock.StepUntil(original, [&] { return original.session().simulation().state().time >= options.duration; });
+  original.Run(stop);  // at its duration: the end checkpoint, and the log closed
+  const auto& end = original.session().simulation().state();
+  ASSERT_EQ(end.step, 5500);
+  DropLastEvent(original_log);
+
+  const ResumePoint point = FindResumePoint(original_log, channels.prefix);
+  ASSERT_EQ(point.error, "");
+  ASSERT_EQ(point.step, 5000);
+  ServerOptions rest;
+  rest.fast = true;
+  rest.duration = end.time - point.sim_time - SmallWithoutFrames().sim.dt / 2;  // to step 5500
+  rest.inputs_log = resumed_log;
+  Bus own_bus("memq://");  // the original's last messages are not another server's
+  Server resumed(own_bus, channels, point.snapshot, rest);
+  EXPECT_EQ(resumed.session().simulation().Hash(), point.state_hash);
+  resumed.Run(stop);
+  EXPECT_EQ(resumed.session().simulation().state().step, 5500);
+  EXPECT_EQ(resumed.session().simulation().Hash(), original.session().simulation().Hash());
+
+  const ReplayReport report = Replay(resumed_log, {});
+  EXPECT_TRUE(report.ok()) << report.error << report.divergence;
+  EXPECT_EQ(report.first_reason, "resume");
+  EXPECT_EQ(report.first_step, 5000);
+  EXPECT_EQ(report.first_hash, point.state_hash);
+  EXPECT_EQ(report.last_checkpoint_step, 5500);  // the end, and no second checkpoint at 5000
+  EXPECT_EQ(report.checkpoints_checked, 1);
+  std::remove(original_log.c_str());
+  std::remove(resumed_log.c_str());
 }
 
 TEST(InputsLog, AFailedWriteEndsTheLogAndNothingElse) {

@@ -91,6 +91,7 @@ TEST(Replay, EveryHashEqualAtOneAndTwoThreads) {
     EXPECT_EQ(report.commands, 2);
     EXPECT_EQ(report.states_checked, recording.steps);
     EXPECT_EQ(report.checkpoints_checked, 2);  // the periodic ones after the start
+    EXPECT_EQ(report.last_checkpoint_step, 2 * Journal::kCheckpointSteps);
     EXPECT_EQ(report.log_end, "");
   }
   std::remove(path.c_str());

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "client/gateway/foxglove_wire.hpp"
+#include "flagsim/checkpoint_t.hpp"
 #include "messages/event_log_reader.hpp"
 #include "server/service/server.hpp"
 #include "tests/client/gateway/tile_update_reader.hpp"
@@ -398,7 +399,18 @@ TEST_F(GatewayTest, TheImageAndTheSceneAreForFoxglove) {
   EXPECT_EQ(scene["entities"][1]["cylinders"].size(), 1u);
 }
 
+bool IsRefreshCheckpoint(const uint8_t* data, size_t size) {
+  checkpoint_t checkpoint;
+  return checkpoint.decode(data, 0, int(size)) == int(size) && checkpoint.reason == "refresh";
+}
+
 TEST_F(GatewayTest, ARecordingIsALogOfTheBusToDownload) {
+  // The gateway's own keyframe request at its start answered first: the recording asks again.
+  bool answered = false;
+  bus_.Subscribe(channels_.checkpoint, [&answered](const std::string&, const uint8_t* data, size_t size) {
+    answered |= IsRefreshCheckpoint(data, size);
+  });
+  ASSERT_TRUE(RunUntil([&answered] { return answered; }));
   client_.Call(kRecordService, 1, R"({"action": "start"})");
   client_.Read();
   ASSERT_TRUE(client_.responses[1]["recording"]) << client_.responses[1];
@@ -416,9 +428,12 @@ TEST_F(GatewayTest, ARecordingIsALogOfTheBusToDownload) {
   ASSERT_TRUE(path);
   EventLogReader log(*path);
   LogEvent event;
-  while (log.Next(&event)) {
-  }
+  int refreshes = 0;  // the answer to the recording's own keyframe request
+  while (log.Next(&event))
+    refreshes +=
+        event.channel == channels_.checkpoint && IsRefreshCheckpoint(event.data.data(), event.data.size());
   EXPECT_EQ(log.events(), stopped["events"].get<int64_t>());
+  EXPECT_EQ(refreshes, 1) << "a recording starts with a whole frame and a checkpoint";
   EXPECT_FALSE(gateway_.RecordingFile("../" + name));
   EXPECT_FALSE(gateway_.RecordingFile("/etc/passwd"));
 }
