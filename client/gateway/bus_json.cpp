@@ -207,4 +207,8 @@ json AckJson(const ack_t& a) {
           {"accepted", bool(a.accepted)}, {"reason", a.reason},     {"step", a.step}};
 }
 
+std::string JsonText(const json& message) {
+  return message.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
 }  // namespace flagsim::gateway
