@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
 # Builds the fuzz targets (tests/fuzz, docs/fuzzing.md) with clang, libFuzzer, AddressSanitizer
 # and UndefinedBehaviorSanitizer in build-fuzz/, and runs each for SECONDS (default 60) on a
-# scratch copy of its seed corpus, with a per-input time and memory limit. Any crash, sanitizer
-# report, timeout, leak or out-of-memory input is saved. Ends with a table per target and exits
-# 1 if any target found something.
+# scratch copy of its seed corpus, with a per-input time and memory limit, then runs every input
+# of the grown corpus once more with LeakSanitizer checking each (a leak check after every input
+# while fuzzing would take most of the time: the bus's library keeps a little memory per
+# instance, so libFuzzer checks them all). Any crash, sanitizer report, timeout, leak or
+# out-of-memory input is saved. Ends with a table per target and exits 1 if any target found
+# something.
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     every target, or those named (e.g. png replay)
 #
 # FUZZ_JOBS=N runs N targets at a time (default 1; each takes one core). Each target's run is in
 # build-fuzz/fuzz/TARGET/: corpus/ (the seeds and what the run added), findings/ (the inputs
-# that failed, each replayable with build-fuzz/tests/fuzz/TARGET_fuzz FILE) and fuzz.log.
+# that failed, each replayable with build-fuzz/tests/fuzz/TARGET_fuzz FILE), fuzz.log and
+# leaks.log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -39,15 +43,19 @@ export ASAN_OPTIONS=detect_leaks=1
 export UBSAN_OPTIONS=print_stacktrace=1
 runs=build-fuzz/fuzz
 
-# One target: a fresh copy of its seeds, then libFuzzer for `seconds`.
+# One target: a fresh copy of its seeds, then libFuzzer for `seconds`, then the leak check of
+# what it grew.
 run_target() {
   local name=$1 dir=$runs/$1
+  local fuzzer=build-fuzz/tests/fuzz/${name}_fuzz
+  local limits=(-timeout=$timeout_per_input -rss_limit_mb=$rss_limit_mb -artifact_prefix="$dir/findings/")
   rm -rf "$dir"
   mkdir -p "$dir/corpus" "$dir/findings"
   cp tests/fuzz/corpus/"$name"/* "$dir/corpus/"
-  build-fuzz/tests/fuzz/"${name}"_fuzz "$dir/corpus" -max_total_time="$seconds" -timeout=$timeout_per_input \
-    -rss_limit_mb=$rss_limit_mb -artifact_prefix="$dir/findings/" -print_final_stats=1 >"$dir/fuzz.log" 2>&1 ||
-    true  # a finding ends the run with a non-zero status; it is counted from findings/ below
+  # A finding ends a run with a non-zero status; findings are counted from findings/ below.
+  "$fuzzer" "$dir/corpus" -max_total_time="$seconds" -detect_leaks=0 -print_final_stats=1 "${limits[@]}" \
+    >"$dir/fuzz.log" 2>&1 || true
+  "$fuzzer" -runs=0 -detect_leaks=1 "${limits[@]}" "$dir/corpus" >"$dir/leaks.log" 2>&1 || true
 }
 
 echo "fuzz: ${#targets[@]} target(s), ${seconds} s each, $jobs at a time"
@@ -60,7 +68,6 @@ wait
 
 # The table: libFuzzer's figures from each log (the INITED line for the start, the last status
 # line and the final stats for the end).
-found=0
 summary=$runs/summary.txt
 {
   printf '%-18s %9s %8s %8s %13s %13s %s\n' target "exec/s" seeds corpus "cov start/end" "ft start/end" findings
@@ -74,13 +81,14 @@ summary=$runs/summary.txt
     field() { sed -n "s/.* $1: \\([0-9]*\\).*/\\1/p" <<<"$2"; }
     findings=$(find "$runs/$name/findings" -type f | wc -l)
     list=$(find "$runs/$name/findings" -type f -printf '%f ' | cut -c1-60)
-    found=$((found + findings))
     printf '%-18s %9s %8s %8s %13s %13s %s\n' "$name" "${rate:-?}" "$seeds" "$corpus" \
       "$(field cov "$start")/$(field cov "$end")" "$(field ft "$start")/$(field ft "$end")" \
       "$findings${list:+ ($list)}"
   done
 } | tee "$summary"
 echo "fuzz: table in $summary; logs, corpora and findings in $runs/TARGET/"
+found=0
+for name in "${targets[@]}"; do found=$((found + $(find "$runs/$name/findings" -type f | wc -l))); done
 if ((found > 0)); then
   echo "fuzz: $found finding(s): each input in $runs/TARGET/findings/ replays with build-fuzz/tests/fuzz/TARGET_fuzz FILE" >&2
   exit 1
