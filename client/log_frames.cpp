@@ -78,11 +78,13 @@ LogSurvey SurveyLog(const std::string& path, const Channels& channels) {
     sim_times.push_back(manifest->sim_time);
   }
   survey.problem = reader.problem();
-  if (params_rate && *params_rate > 0) {
+  const auto believable = [](double rate) { return rate > 0 && rate <= kMaxFrameRate; };
+  if (params_rate && believable(*params_rate)) {
     survey.frame_rate = *params_rate;
     survey.frame_rate_source = "PARAMS";
   } else {
-    survey.frame_rate = EstimateFrameRate(sim_times);
+    const double estimate = EstimateFrameRate(sim_times);
+    survey.frame_rate = believable(estimate) ? estimate : 0;
     survey.frame_rate_source = "FRAME times";
   }
   return survey;

@@ -28,12 +28,17 @@
 
 namespace flagsim {
 
+/// Hz of simulated time: the fastest frame rate a log is believed to have, the most the server
+/// draws (its frame_rate parameter's largest). A damaged log's PARAMS or FRAME times may claim
+/// more, and keeping the timing would then repeat a frame billions of times.
+constexpr double kMaxFrameRate = 120;
+
 /// What a first pass over a log finds, reading only its FRAME and PARAMS events.
 struct LogSurvey {
   int64_t manifests = 0;          ///< FRAME events with the prefix
   int64_t keyframes = 0;          ///< of them, keyframes
   int width = 0, height = 0;      ///< px, of the first frame
-  double frame_rate = 0;          ///< Hz of simulated time; 0 if the log does not tell
+  double frame_rate = 0;          ///< Hz of simulated time, up to kMaxFrameRate; 0 if the log does not tell
   std::string frame_rate_source;  ///< "PARAMS" or "FRAME times", for the user
   std::string problem;            ///< how the log ended if not cleanly (EventLogReader::problem)
 };

@@ -50,6 +50,13 @@ std::string ReadPng(const std::string& path, int* width, int* height, std::vecto
   image.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&image, path.c_str()))
     return "cannot read " + path + ": " + image.message;
+  // The header alone says the size: a few bytes may claim gigabytes of pixels.
+  if (image.width > kMaxPngSide || image.height > kMaxPngSide) {
+    const std::string size = std::to_string(image.width) + " x " + std::to_string(image.height);
+    png_image_free(&image);
+    return "cannot read " + path + ": " + size + " px; allowed up to " + std::to_string(kMaxPngSide) + " x " +
+           std::to_string(kMaxPngSide);
+  }
   image.format = PNG_FORMAT_RGB;
   rgb->resize(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, rgb->data(), 0, nullptr)) {

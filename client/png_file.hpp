@@ -14,7 +14,11 @@ std::string WritePng(const std::string& path, int width, int height, const uint8
 /// and flagctl export write them.
 std::string PngFramePath(const std::string& directory, int64_t index);
 
-/// Reads an 8-bit RGB PNG; "" or what went wrong.
+/// px: the widest and tallest PNG ReadPng takes, as the largest frame a client assembles.
+constexpr int kMaxPngSide = 8192;
+
+/// Reads a PNG (any colour type and depth) as 8-bit RGB; "" or what went wrong. One wider or
+/// taller than kMaxPngSide is refused before its pixels are read.
 std::string ReadPng(const std::string& path, int* width, int* height, std::vector<uint8_t>* rgb);
 
 }  // namespace flagsim

@@ -29,9 +29,9 @@ std::string Range(const parameter_t& row) {
 
 std::string DefaultText(const parameter_t& row) {
   if (row.kind == parameter_t::BOOLEAN) return row.default_value != 0 ? "true" : "false";
-  if (row.kind == parameter_t::CHOICE) {
-    const auto index = static_cast<size_t>(row.default_value);
-    return index < row.choices.size() ? row.choices[index] : Number(row.default_value);
+  if (row.kind == parameter_t::CHOICE) {  // an index, unless the message is damaged
+    const bool index = row.default_value >= 0 && row.default_value < double(row.choices.size());
+    return index ? row.choices[size_t(row.default_value)] : Number(row.default_value);
   }
   return Number(row.default_value);
 }
@@ -158,8 +158,8 @@ void PrintTimeline(const timeline_t& timeline, std::ostream& out) {
 }
 
 std::string TipText(const state_t& state) {
-  const size_t tip = 3 * static_cast<size_t>(std::max(state.cols - 1, 0));
-  if (tip + 2 >= state.position.size()) return "(none)";
+  const size_t tip = 3 * static_cast<size_t>(std::max<int64_t>(int64_t(state.cols) - 1, 0));
+  if (state.cols <= 0 || tip + 2 >= state.position.size()) return "(none)";
   char text[96];
   std::snprintf(text, sizeof(text), "(%.3f, %.3f, %.3f)", state.position[tip], state.position[tip + 1],
                 state.position[tip + 2]);

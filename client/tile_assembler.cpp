@@ -86,6 +86,9 @@ TileAssembler::FrameResult TileAssembler::AddManifest(const frame_t& manifest) {
       manifest.height > kMaxHeight || manifest.tile_size <= 0 || manifest.tile_size > 4096) {
     return FrameResult::kRefused;
   }
+  const int64_t columns = (manifest.width + manifest.tile_size - 1) / manifest.tile_size;
+  const int64_t rows = (manifest.height + manifest.tile_size - 1) / manifest.tile_size;
+  if (columns * rows > kMaxTiles) return FrameResult::kRefused;
   if (manifest.width != width_ || manifest.height != height_ || manifest.tile_size != tile_size_) {
     Resize(manifest.width, manifest.height, manifest.tile_size);
     for (const tile_t& tile : latest_) {

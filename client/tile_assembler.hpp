@@ -15,8 +15,12 @@ namespace flagsim {
 
 class TileAssembler {
  public:
-  static constexpr int kMaxWidth = 8192, kMaxHeight = 8192;  ///< px: larger frames are refused
-  static constexpr size_t kMaxKept = 8192;                   ///< tiles kept of the latest frame
+  /// px: larger frames are refused. The server draws none larger (render::CameraMove's limits).
+  static constexpr int kMaxWidth = 3840, kMaxHeight = 2160;
+  /// Tiles in a frame's grid: a manifest asking for more is refused (the server's tiles are 128 px,
+  /// 510 of them at the largest size), so that a few bytes never claim gigabytes of tile records.
+  static constexpr int kMaxTiles = 8192;
+  static constexpr size_t kMaxKept = kMaxTiles;  ///< tiles kept of the latest frame
 
   /// Decodes `tile` into the image. Returns "" or why it was refused (undecodable, wrong size,
   /// pixel hash mismatch): then the image is unchanged. The latest frame's tiles are also
@@ -26,7 +30,7 @@ class TileAssembler {
   enum class FrameResult {
     kComplete,    ///< the image now equals the server's frame, hash checked
     kIncomplete,  ///< some tiles are missing or stale: wait for more, or ask for a keyframe
-    kRefused,     ///< the manifest makes no sense (size out of range)
+    kRefused,     ///< the manifest makes no sense (size or tile count out of range)
   };
   /// Checks the image against a manifest (and adopts its size, if new).
   FrameResult AddManifest(const frame_t& manifest);

@@ -6,6 +6,7 @@
 #   scripts/install-deps.sh --java   also a JDK, for the lcm-spy types jar
 #   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL (the llvmpipe comparison), Bullet (the soft body
 #                                    comparison) and gnuplot (charts)
+#   scripts/install-deps.sh --fuzz   also clang and libFuzzer, for the fuzz targets (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -29,7 +30,8 @@ for option in "$@"; do
     --browser) packages+=(chromium) ;;
     --java) packages+=(default-jdk-headless) ;;
     --bench) packages+=(libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox libbullet-dev) ;;
-    *) echo "install-deps: unknown option $option (known: --browser, --java, --bench)" >&2; exit 2 ;;
+    --fuzz) packages+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev) ;;
+    *) echo "install-deps: unknown option $option (known: --browser, --java, --bench, --fuzz)" >&2; exit 2 ;;
   esac
 done
 # Node.js and npm build the live view's page (and run its tests): the machine's own if it has

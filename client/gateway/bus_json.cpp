@@ -182,7 +182,7 @@ json StateSummaryJson(const state_t& s) {
       {"wind_speed", std::sqrt(s.wind[0] * s.wind[0] + s.wind[1] * s.wind[1] + s.wind[2] * s.wind[2])},
       {"wind_gust", s.wind_gust},
       {"pole_top", Point(s.pole_top[0], s.pole_top[1], s.pole_top[2])}};
-  const size_t tip = 3 * size_t(std::max(s.cols - 1, 0));
+  const size_t tip = 3 * size_t(std::max<int64_t>(int64_t(s.cols) - 1, 0));
   if (s.cols > 0 && tip + 2 < s.position.size()) {
     const double x = s.position[tip], y = s.position[tip + 1], z = s.position[tip + 2];
     out["tip"] = Point(x, y, z);
@@ -205,6 +205,10 @@ json CameraJson(const frame_t& f) {
 json AckJson(const ack_t& a) {
   return {{"client_id", a.client_id},     {"sequence", a.sequence}, {"channel", a.channel},
           {"accepted", bool(a.accepted)}, {"reason", a.reason},     {"step", a.step}};
+}
+
+std::string JsonText(const json& message) {
+  return message.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace flagsim::gateway

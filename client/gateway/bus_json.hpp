@@ -34,4 +34,9 @@ int LawOfName(const std::string& name);
 /// {"sec", "nsec"} of a time in microseconds since the Unix epoch.
 nlohmann::json TimeJson(int64_t utime);
 
+/// `message` as text for a client. JSON is UTF-8, but a string from the bus holds whatever bytes
+/// its publisher put there: bytes that are not UTF-8 become U+FFFD, where nlohmann's dump()
+/// would throw (and one hostile datagram would end the gateway).
+std::string JsonText(const nlohmann::json& message);
+
 }  // namespace flagsim::gateway

@@ -1,5 +1,6 @@
 #include "client/gateway/client_protocol.hpp"
 
+#include "client/gateway/bus_json.hpp"
 #include "client/gateway/foxglove_wire.hpp"
 #include "client/gateway/gateway.hpp"
 
@@ -48,7 +49,7 @@ void ClientProtocol::Push(Outgoing message) {
   if (control_bytes_ > kMaxControlBytes) overflowed_ = true;
 }
 
-void ClientProtocol::SendJson(const json& message) { Push({false, message.dump(), nullptr}); }
+void ClientProtocol::SendJson(const json& message) { Push({false, JsonText(message), nullptr}); }
 
 void ClientProtocol::SendBinary(std::string frame) { Push({true, std::move(frame), nullptr}); }
 
@@ -113,7 +114,8 @@ void ClientProtocol::Subscribe(const json& message) {
     const auto channel =
         subscription.is_object() ? Id(subscription.value("channelId", json())) : std::nullopt;
     if (!id || !channel || FindChannel(*channel) == nullptr) {
-      Complain("subscribe: " + subscription.dump() + " needs an id and a channelId of an advertised channel");
+      Complain("subscribe: " + JsonText(subscription) +
+               " needs an id and a channelId of an advertised channel");
       continue;
     }
     bool id_taken = false;

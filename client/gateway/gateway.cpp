@@ -72,7 +72,7 @@ void Gateway::SubscribeBus() {
       [this](const state_t& message) {
         const auto state = std::make_shared<const state_t>(message);
         feeds_[kStateChannel].PublishLazily(Nanoseconds(state->utime),
-                                            [state] { return StateSummaryJson(*state).dump(); });
+                                            [state] { return JsonText(StateSummaryJson(*state)); });
         feeds_[kSceneChannel].PublishLazily(Nanoseconds(state->utime),
                                             [state] { return SceneUpdateJson(*state); });
         WakeAll();
@@ -80,12 +80,12 @@ void Gateway::SubscribeBus() {
       dropped, 200);
   SubscribeDecoded<status_t>(
       bus_, channels_.status,
-      [this](const status_t& status) { Publish(kStatusChannel, status.utime, StatusJson(status).dump()); },
+      [this](const status_t& status) { Publish(kStatusChannel, status.utime, JsonText(StatusJson(status))); },
       dropped);
   SubscribeDecoded<timeline_t>(
       bus_, channels_.timeline,
       [this](const timeline_t& timeline) {
-        Publish(kTimelineChannel, timeline.utime, TimelineJson(timeline).dump());
+        Publish(kTimelineChannel, timeline.utime, JsonText(TimelineJson(timeline)));
       },
       dropped);
   SubscribeDecoded<params_t>(
@@ -117,7 +117,7 @@ void Gateway::OnFrame(const frame_t& manifest) {
   pose.erase("frame_id");
   if (pose != last_camera_) {
     last_camera_ = std::move(pose);
-    feeds_[kCameraChannel].Publish(Nanoseconds(manifest.utime), camera.dump());
+    feeds_[kCameraChannel].Publish(Nanoseconds(manifest.utime), JsonText(camera));
   }
   if (frame->image) {
     feeds_[kImageChannel].PublishLazily(Nanoseconds(frame->utime), [frame] {
@@ -131,7 +131,7 @@ void Gateway::OnFrame(const frame_t& manifest) {
 void Gateway::OnParams(const params_t& params) {
   const json changed = ChangedValues(params_, params);
   params_ = params;
-  feeds_[kParamsChannel].Publish(Nanoseconds(params.utime), ParamsJson(params).dump());
+  feeds_[kParamsChannel].Publish(Nanoseconds(params.utime), JsonText(ParamsJson(params)));
   if (!changed.empty()) {
     for (auto& [id, client] : clients_) client->protocol().OnParametersChanged(changed);
   }
@@ -139,7 +139,7 @@ void Gateway::OnParams(const params_t& params) {
 }
 
 void Gateway::OnAck(const ack_t& ack) {
-  feeds_[kAcksChannel].Publish(Nanoseconds(ack.utime), AckJson(ack).dump());
+  feeds_[kAcksChannel].Publish(Nanoseconds(ack.utime), JsonText(AckJson(ack)));
   relay_.OnAck(ack);
   WakeAll();
 }
@@ -262,7 +262,7 @@ void Gateway::CallService(int client, uint32_t service, uint32_t call, std::stri
   const json request = json::parse(payload, nullptr, false);
   if (request.is_discarded()) return fail(std::string(info->name) + ": the request is not JSON");
   const auto respond = [service, call](ClientProtocol& p, const json& result) {
-    p.SendBinary(ServiceCallResponse(service, call, "json", result.dump()));
+    p.SendBinary(ServiceCallResponse(service, call, "json", JsonText(result)));
   };
   if (service == kRecordService) {
     const std::string action = request.is_object() ? request.value("action", "") : "";
@@ -404,7 +404,7 @@ void Gateway::PublishGatewayStatus(double now) {
                        {"per_client", per_client}};
   frames_at_window_ = counters_.frames_mirrored;
   status_window_start_ = now;
-  Publish(kGatewayStatusChannel, UnixMicros(), status.dump());
+  Publish(kGatewayStatusChannel, UnixMicros(), JsonText(status));
 }
 
 }  // namespace flagsim::gateway

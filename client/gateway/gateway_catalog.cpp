@@ -80,37 +80,44 @@ std::string ServerInfoMessage(const std::string& name, const std::string& sessio
       .dump();
 }
 
+// Both made once: the channels and services never change, and every client connecting is sent them.
 std::string AdvertiseMessage() {
-  json channels = json::array();
-  for (const ChannelInfo& channel : AdvertisedChannels()) {
-    channels.push_back({{"id", channel.id},
-                        {"topic", channel.topic},
-                        {"encoding", channel.encoding},
-                        {"schemaName", channel.schema_name},
-                        {"schemaEncoding", channel.schema_encoding},
-                        {"schema", CompactSchema(channel.schema_file)}});
-  }
-  return json{{"op", "advertise"}, {"channels", channels}}.dump();
+  static const std::string message = [] {
+    json channels = json::array();
+    for (const ChannelInfo& channel : AdvertisedChannels()) {
+      channels.push_back({{"id", channel.id},
+                          {"topic", channel.topic},
+                          {"encoding", channel.encoding},
+                          {"schemaName", channel.schema_name},
+                          {"schemaEncoding", channel.schema_encoding},
+                          {"schema", CompactSchema(channel.schema_file)}});
+    }
+    return json{{"op", "advertise"}, {"channels", channels}}.dump();
+  }();
+  return message;
 }
 
 std::string AdvertiseServicesMessage() {
-  json services = json::array();
-  for (const ServiceInfo& service : AdvertisedServices()) {
-    const auto definition = [](std::string_view stem) {
-      return json{{"encoding", "json"},
-                  {"schemaName", json::parse(Schema(stem)).value("title", std::string(stem))},
-                  {"schemaEncoding", "jsonschema"},
-                  {"schema", CompactSchema(stem)}};
-    };
-    services.push_back({{"id", service.id},
-                        {"name", service.name},
-                        {"type", service.type},
-                        {"request", definition(service.request_schema)},
-                        {"response", definition(service.response_schema)},
-                        {"requestSchema", CompactSchema(service.request_schema)},
-                        {"responseSchema", CompactSchema(service.response_schema)}});
-  }
-  return json{{"op", "advertiseServices"}, {"services", services}}.dump();
+  static const std::string message = [] {
+    json services = json::array();
+    for (const ServiceInfo& service : AdvertisedServices()) {
+      const auto definition = [](std::string_view stem) {
+        return json{{"encoding", "json"},
+                    {"schemaName", json::parse(Schema(stem)).value("title", std::string(stem))},
+                    {"schemaEncoding", "jsonschema"},
+                    {"schema", CompactSchema(stem)}};
+      };
+      services.push_back({{"id", service.id},
+                          {"name", service.name},
+                          {"type", service.type},
+                          {"request", definition(service.request_schema)},
+                          {"response", definition(service.response_schema)},
+                          {"requestSchema", CompactSchema(service.request_schema)},
+                          {"responseSchema", CompactSchema(service.response_schema)}});
+    }
+    return json{{"op", "advertiseServices"}, {"services", services}}.dump();
+  }();
+  return message;
 }
 
 }  // namespace flagsim::gateway

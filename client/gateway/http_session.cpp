@@ -1,9 +1,7 @@
 #include "client/gateway/http_session.hpp"
 
-#include <boost/beast/websocket.hpp>
 #include <chrono>
 
-#include "client/gateway/web_assets.hpp"
 #include "client/gateway/websocket_session.hpp"
 
 namespace flagsim::gateway {
@@ -11,37 +9,11 @@ namespace {
 
 namespace beast = boost::beast;
 namespace http = beast::http;
-namespace websocket = beast::websocket;
-
-constexpr std::string_view kSubprotocol = "foxglove.websocket.v1";
-constexpr std::string_view kRecordings = "/recordings/";
 
 // The page loads only from here; hash-wasm compiles WebAssembly, hence 'wasm-unsafe-eval'.
 constexpr const char* kContentSecurityPolicy =
     "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; style-src 'self' 'unsafe-inline'; "
     "img-src 'self' data: blob:; connect-src 'self' ws: wss:";
-
-std::string_view View(beast::string_view text) { return {text.data(), text.size()}; }
-
-std::string_view Header(const http::request<http::string_body>& request, http::field field) {
-  const auto found = request.find(field);
-  return found == request.end() ? std::string_view() : View(found->value());
-}
-
-/// Whether the client offered the Foxglove subprotocol among its Sec-WebSocket-Protocol values.
-bool OffersSubprotocol(std::string_view offered) {
-  size_t start = 0;
-  while (start <= offered.size()) {
-    size_t end = offered.find(',', start);
-    if (end == std::string_view::npos) end = offered.size();
-    std::string_view value = offered.substr(start, end - start);
-    while (!value.empty() && value.front() == ' ') value.remove_prefix(1);
-    while (!value.empty() && value.back() == ' ') value.remove_suffix(1);
-    if (value == kSubprotocol) return true;
-    start = end + 1;
-  }
-  return false;
-}
 
 }  // namespace
 
@@ -61,7 +33,7 @@ void HttpSession::Read() {
                    beast::bind_front_handler(&HttpSession::OnRead, shared_from_this()));
 }
 
-// request => access (token, Host, Origin) => upgrade, the page, a recording, or an error
+// request => its route (http_routing.hpp) => upgrade, the page, a recording, or a refusal
 void HttpSession::OnRead(beast::error_code error, size_t) {
   if (error) {  // closed, timed out, or not HTTP within the limits: nothing to answer
     beast::error_code ignored;
@@ -69,69 +41,52 @@ void HttpSession::OnRead(beast::error_code error, size_t) {
     return;
   }
   Request request = parser_->release();
-  const AccessDecision access = CheckAccess(
-      context_.access,
-      {View(request.target()), Header(request, http::field::host), Header(request, http::field::origin),
-       Header(request, http::field::authorization), Header(request, http::field::cookie)});
-  if (access.status != 200) {
-    ++(access.status == 401 ? context_.gateway.counters().unauthorized
-                            : context_.gateway.counters().forbidden);
-    return Refuse(request, access.status == 401 ? http::status::unauthorized : http::status::forbidden,
-                  access.reason);
+  const HttpRoute route = RouteRequest(request, context_);
+  switch (route.kind) {
+    case HttpRoute::kUpgrade:
+      return Upgrade(std::move(request));
+    case HttpRoute::kAsset:
+      return Serve(request, *route.asset, route.set_cookie);
+    case HttpRoute::kRecording:
+      return ServeRecording(request, route);
+    case HttpRoute::kRefuse:
+      break;
   }
-  if (websocket::is_upgrade(request)) return Upgrade(std::move(request));
-  Serve(request, access.token_in_query);
+  if (route.status == http::status::unauthorized) ++context_.gateway.counters().unauthorized;
+  if (route.status == http::status::forbidden) ++context_.gateway.counters().forbidden;
+  Refuse(request, route.status, route.reason);
 }
 
 void HttpSession::Upgrade(Request request) {
-  if (!OffersSubprotocol(Header(request, http::field::sec_websocket_protocol))) {
-    return Refuse(request, http::status::bad_request,
-                  "this WebSocket speaks the Foxglove protocol: offer the subprotocol foxglove.websocket.v1");
-  }
-  if (context_.websocket_clients >= ServerContext::kMaxWebSocketClients) {
-    return Refuse(request, http::status::service_unavailable,
-                  "already " + std::to_string(ServerContext::kMaxWebSocketClients) + " WebSocket clients");
-  }
   std::make_shared<WebSocketSession>(std::move(stream_), context_, address_)->Accept(std::move(request));
 }
 
-void HttpSession::Serve(const Request& request, bool set_cookie) {
-  if (request.method() != http::verb::get && request.method() != http::verb::head) {
-    return Refuse(request, http::status::method_not_allowed, "only GET and HEAD");
-  }
-  const std::string_view path = TargetPath(View(request.target()));
-  if (path.substr(0, kRecordings.size()) == kRecordings)
-    return ServeRecording(request, path.substr(kRecordings.size()));
-  const WebAsset* asset = FindWebAsset(path);
-  if (asset == nullptr) return Refuse(request, http::status::not_found, "no such page: " + std::string(path));
+void HttpSession::Serve(const Request& request, const WebAsset& asset, bool set_cookie) {
   http::response<http::string_body> response{http::status::ok, request.version()};
-  response.set(http::field::content_type, std::string(asset->content_type));
+  response.set(http::field::content_type, std::string(asset.content_type));
   response.set(http::field::cache_control, "no-cache");
   response.set("Content-Security-Policy", kContentSecurityPolicy);
   response.set("X-Content-Type-Options", "nosniff");
-  if (set_cookie && !context_.access.token.empty()) {
+  if (set_cookie) {
     response.set(http::field::set_cookie,
                  "flagsim_token=" + context_.access.token + "; HttpOnly; SameSite=Strict; Path=/");
   }
-  if (request.method() == http::verb::get) response.body() = std::string(asset->body);
-  response.content_length(asset->body.size());
+  if (request.method() == http::verb::get) response.body() = std::string(asset.body);
+  response.content_length(asset.body.size());
   response.keep_alive(request.keep_alive());
   Send(std::move(response));
 }
 
-void HttpSession::ServeRecording(const Request& request, std::string_view name) {
-  const std::optional<std::string> path = context_.gateway.RecordingFile(name);
-  if (!path)
-    return Refuse(request, http::status::not_found, "no finished recording named " + std::string(name));
+void HttpSession::ServeRecording(const Request& request, const HttpRoute& route) {
   http::file_body::value_type file;
   beast::error_code error;
-  file.open(path->c_str(), beast::file_mode::scan, error);
-  if (error) return Refuse(request, http::status::not_found, "cannot read " + std::string(name));
+  file.open(route.recording_path.c_str(), beast::file_mode::scan, error);
+  if (error) return Refuse(request, http::status::not_found, "cannot read " + route.recording_name);
   const uint64_t size = file.size();
   http::response<http::file_body> response{std::piecewise_construct, std::make_tuple(std::move(file)),
                                            std::make_tuple(http::status::ok, request.version())};
   response.set(http::field::content_type, "application/octet-stream");
-  response.set(http::field::content_disposition, "attachment; filename=\"" + std::string(name) + "\"");
+  response.set(http::field::content_disposition, "attachment; filename=\"" + route.recording_name + "\"");
   response.content_length(size);
   response.keep_alive(request.keep_alive());
   if (request.method() == http::verb::head) response.body().close();

@@ -1,6 +1,7 @@
 // One HTTP connection to the gateway (Boost.Beast): requests are read with bounded headers and
-// bodies, checked for their token, Host and Origin (access_policy.hpp), and answered with the
-// page, a finished recording, or an error; a WebSocket upgrade is handed to a WebSocketSession.
+// bodies, routed (http_routing.hpp: their token, Host and Origin, method and path), and answered
+// with the page, a finished recording, or an error; a WebSocket upgrade is handed to a
+// WebSocketSession.
 #pragma once
 
 #include <boost/asio/ip/tcp.hpp>
@@ -9,6 +10,7 @@
 #include <memory>
 #include <optional>
 
+#include "client/gateway/http_routing.hpp"
 #include "client/gateway/server_context.hpp"
 
 namespace flagsim::gateway {
@@ -24,8 +26,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void Read();
   void OnRead(boost::beast::error_code error, size_t bytes);
   void Upgrade(Request request);
-  void Serve(const Request& request, bool set_cookie);
-  void ServeRecording(const Request& request, std::string_view name);
+  void Serve(const Request& request, const WebAsset& asset, bool set_cookie);
+  void ServeRecording(const Request& request, const HttpRoute& route);
   void Refuse(const Request& request, boost::beast::http::status status, const std::string& reason);
   template <class Body>
   void Send(boost::beast::http::response<Body> response);

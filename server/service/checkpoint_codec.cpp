@@ -349,9 +349,10 @@ std::string ReadSimulation(const checkpoint_t& message, const Scene& scene,
   std::string problem = ReadParameters(message.sim_names, message.sim_values, "sim_parameters", &in_use);
   if (problem.empty()) problem = ReadWindField(message, &out->wind);
   constexpr int kMaxGuardFactor = sim::Simulation<float>::kMaxGuardFactor;
-  if (problem.empty() && (message.substeps < 1 || message.substeps > sim::kMaxComputedSubsteps))
+  // A session's checks keep a flag's substeps within kMaxSubsteps (the guard's factor apart).
+  if (problem.empty() && (message.substeps < 1 || message.substeps > sim::kMaxSubsteps))
     problem = "substeps: " + std::to_string(message.substeps) + "; allowed 1 .. " +
-              std::to_string(sim::kMaxComputedSubsteps);
+              std::to_string(sim::kMaxSubsteps);
   if (problem.empty() && (message.guard_factor < 1 || message.guard_factor > kMaxGuardFactor))
     problem = "guard_factor: " + std::to_string(message.guard_factor) + "; allowed 1 .. " +
               std::to_string(kMaxGuardFactor);

@@ -12,11 +12,16 @@
 #include "messages/event_log_reader.hpp"
 #include "server/service/checkpoint_codec.hpp"
 #include "server/service/command_apply.hpp"
+#include "server/service/journal.hpp"
 
 namespace flagsim {
 namespace {
 
 constexpr size_t kMaxMessageBytes = 256 << 20;  ///< a checkpoint of the largest grid fits
+/// Steps the replay takes at most to reach the next event. A sound log has a CHECKPOINT every
+/// Journal::kCheckpointSteps; this allows three in a row lost on the way to the recorder. An
+/// event further ahead (a damaged step number) would keep the replay stepping for ever.
+constexpr int64_t kMaxStepsAhead = 4 * Journal::kCheckpointSteps;
 
 std::string Hex(uint64_t value) {
   char text[20];
@@ -40,8 +45,9 @@ class Replayer {
     return wire::CheckedDecode<Message>(data.data(), data.size(), kMaxMessageBytes, &error);
   }
   bool Resume(const checkpoint_t& checkpoint);
-  /// Steps on to `step` (if ahead).
-  void AdvanceTo(int64_t step);
+  /// Steps on to `step` (if ahead) for an event on `channel`; false (the log ends there) if it
+  /// lies further ahead than a sound log's events do.
+  bool AdvanceTo(int64_t step, const std::string& channel);
   bool Check(const char* what, int64_t step, uint64_t recorded);
   bool Apply(const applied_command_t& command);
   bool Differ(int64_t step, const std::string& what);
@@ -62,7 +68,7 @@ bool Replayer::Handle(const std::string& channel, const std::vector<uint8_t>& da
                         checkpoint->reason + " checkpoint); replayed the first";
       return false;
     }
-    AdvanceTo(checkpoint->step);
+    if (!AdvanceTo(checkpoint->step, channel)) return false;
     report_.last_checkpoint_step = checkpoint->step;
     report_.last_checkpoint_hash = uint64_t(checkpoint->state_hash);
     return Check("checkpoint", checkpoint->step, uint64_t(checkpoint->state_hash));
@@ -79,8 +85,7 @@ bool Replayer::Handle(const std::string& channel, const std::vector<uint8_t>& da
       ++report_.skipped;
       return true;
     }
-    AdvanceTo(state->step);
-    return Check("state", state->step, uint64_t(state->state_hash));
+    return AdvanceTo(state->step, channel) && Check("state", state->step, uint64_t(state->state_hash));
   }
   return true;
 }
@@ -102,9 +107,18 @@ bool Replayer::Resume(const checkpoint_t& checkpoint) {
   return true;
 }
 
-void Replayer::AdvanceTo(int64_t step) {
+bool Replayer::AdvanceTo(int64_t step, const std::string& channel) {
+  const int64_t now = session_->simulation().state().step;
+  if (step - now > kMaxStepsAhead) {
+    report_.log_end = channel + " at step " + std::to_string(step) + ", " + std::to_string(step - now) +
+                      " steps past the replay at step " + std::to_string(now) + " with nothing recorded between " +
+                      "(a sound log has a CHECKPOINT every " + std::to_string(Journal::kCheckpointSteps) +
+                      " steps): the log is damaged there; replayed up to it";
+    return false;
+  }
   while (session_->simulation().state().step < step) session_->Step();
   report_.last_step = session_->simulation().state().step;
+  return true;
 }
 
 bool Replayer::Check(const char* what, int64_t step, uint64_t recorded) {
@@ -121,7 +135,7 @@ bool Replayer::Apply(const applied_command_t& command) {
                                     ", behind the replay at step " +
                                     std::to_string(session_->simulation().state().step));
   }
-  AdvanceTo(command.step);
+  if (!AdvanceTo(command.step, channels_.applied)) return false;
   ++report_.commands;
   const std::string problem = ApplyCommandBytes(command.channel, command.data, session_.get());
   if (problem.empty()) return true;

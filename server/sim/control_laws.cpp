@@ -12,16 +12,19 @@ Vec3 Normalized(const Vec3& v) {
   return {v[0] / length, v[1] / length, v[2] / length};
 }
 
-/// Rate at key (t, v) of the Catmull-Rom spline through its neighbours (ta, va) and (tb, vb).
-double CatmullRomRate(double ta, double va, double tb, double vb) {
-  return tb > ta ? (vb - va) / (tb - ta) : 0.0;
+/// `span` times the rate at a key of the Catmull-Rom spline through its neighbours (ta, va) and
+/// (tb, vb): (vb - va) span / (tb - ta). The neighbours bracket the segment, so span / (tb - ta)
+/// is at most 1 and is taken first: keys however close (1e-307 s apart) give no overflow, where
+/// the rate alone would be infinite and the cubic NaN.
+double ScaledCatmullRomRate(double span, double ta, double va, double tb, double vb) {
+  return tb > ta ? (vb - va) * (span / (tb - ta)) : 0.0;
 }
 
 /// The cubic's end rates times the segment's span: Catmull-Rom from the neighbouring keys.
 void CubicRates(const Segment& g, double* m0, double* m1) {
   const double span = g.t1 - g.t0;
-  *m0 = span * CatmullRomRate(g.t_before, g.v_before, g.t1, g.v1);
-  *m1 = span * CatmullRomRate(g.t0, g.v0, g.t_after, g.v_after);
+  *m0 = ScaledCatmullRomRate(span, g.t_before, g.v_before, g.t1, g.v1);
+  *m1 = ScaledCatmullRomRate(span, g.t0, g.v0, g.t_after, g.v_after);
 }
 
 }  // namespace

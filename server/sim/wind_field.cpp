@@ -20,7 +20,14 @@ double LatticeValue(uint64_t seed, int64_t i) {
 
 }  // namespace
 
+// The lattice repeats every 2^52 cells, far beyond any session (a smaller |u| is left exactly as
+// it is), so that every finite u's cell fits int64_t. A u that is not finite (a state gone wrong,
+// which the guard catches) has no noise.
 double NoiseCursor::operator()(double u) {
+  if (!(std::fabs(u) < 0x1p52)) {
+    if (!std::isfinite(u)) return 0;
+    u = std::fmod(u, 0x1p52);
+  }
   const double cell = std::floor(u);
   const double f = u - cell;
   const double blend = f * f * f * (f * (f * 6 - 15) + 10);  // C2-continuous

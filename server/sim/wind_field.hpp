@@ -68,7 +68,7 @@ class WindField {
 
 /// Smooth 1D value noise in [-1, 1] (a quintic blend between hashed values at the integers),
 /// evaluated at u after u: the hashed values of the last lattice cell are kept, so consecutive
-/// u in one cell cost no hashing.
+/// u in one cell cost no hashing. Periodic over 2^52 cells; 0 where u is not finite.
 class NoiseCursor {
  public:
   explicit NoiseCursor(uint64_t seed) : seed_(seed) {}

@@ -195,6 +195,21 @@ TEST(LogFrames, WithoutParamsTheRateComesFromTheFrameTimes) {
   EXPECT_EQ(survey.frame_rate_source, "FRAME times");
 }
 
+// A damaged log may claim any rate: one no server draws is not believed (keeping the timing at
+// 1e12 Hz would repeat a frame for every picosecond between two frames).
+TEST(LogFrames, ARateNoServerDrawsIsNotBelieved) {
+  LogBuilder claims;
+  claims.Params(1e12);
+  for (int k = 0; k < 8; ++k) claims.Frame(k, k * 0.04);
+  const LogSurvey survey = SurveyLog(claims.Close(), claims.channels());
+  EXPECT_NEAR(survey.frame_rate, 25, 1e-9);
+  EXPECT_EQ(survey.frame_rate_source, "FRAME times");
+
+  LogBuilder crowded;
+  for (int k = 0; k < 8; ++k) crowded.Frame(k, k * 1e-6);
+  EXPECT_EQ(SurveyLog(crowded.Close(), crowded.channels()).frame_rate, 0);
+}
+
 // Frames fall on step boundaries: at 30 Hz with 2 ms steps, intervals of 16 and 17 steps.
 TEST(EstimateFrameRate, TheMeanOfTheUsualIntervals) {
   std::vector<double> times;

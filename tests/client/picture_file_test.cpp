@@ -57,6 +57,20 @@ TEST(WritePicture, WritesTheFormatTheNameSays) {
   std::remove(png.c_str());
 }
 
+// The size comes from the header: a file claiming more pixels than the limit is refused before
+// memory is taken for them.
+TEST(ReadPng, APictureOverTheSizeLimitIsRefusedByItsHeader) {
+  const std::string png = Scratch("wide.png");
+  const std::vector<uint8_t> rgb(size_t(kMaxPngSide + 1) * 3, 128);
+  ASSERT_EQ(WritePng(png, kMaxPngSide + 1, 1, rgb.data()), "");
+  int width = 0, height = 0;
+  std::vector<uint8_t> read;
+  const std::string problem = ReadPng(png, &width, &height, &read);
+  EXPECT_NE(problem.find("8193 x 1 px; allowed up to 8192 x 8192"), std::string::npos) << problem;
+  EXPECT_TRUE(read.empty());
+  std::remove(png.c_str());
+}
+
 TEST(WritePicture, AFileThatCannotBeWrittenIsNamed) {
   const std::vector<uint8_t> rgb(4 * 4 * 3, 0);
   const std::string problem = WritePicture("/nonexistent/frame.jpg", PictureFormat::kJpeg, 4, 4, rgb.data());

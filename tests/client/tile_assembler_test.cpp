@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "server/render/camera_moves.hpp"
 #include "server/service/tile_stream.hpp"
 
 namespace flagsim {
@@ -97,6 +98,27 @@ TEST(TileAssembler, BadTilesAreRefusedAndChangeNothing) {
   frame_t huge = frame.manifest;
   huge.width = 100000;
   EXPECT_EQ(assembler.AddManifest(huge), TileAssembler::FrameResult::kRefused);
+  EXPECT_EQ(assembler.image(), before);
+}
+
+// A manifest of a few hundred bytes could ask for millions of tiny tiles (each a record the
+// assembler keeps): more than kMaxTiles is refused, and the picture stays.
+TEST(TileAssembler, AManifestOfTooManyTilesIsRefused) {
+  static_assert(TileAssembler::kMaxWidth == render::CameraMove::kMaxWidth &&
+                TileAssembler::kMaxHeight == render::CameraMove::kMaxHeight);
+  TileStream stream(64);
+  TileAssembler assembler;
+  const EncodedFrame frame = stream.Encode(Picture(3), FrameInfo{}, 1);
+  Deliver(frame, &assembler);
+  const std::vector<uint8_t> before = assembler.image();
+  frame_t tiny_tiles = frame.manifest;
+  tiny_tiles.width = TileAssembler::kMaxWidth;
+  tiny_tiles.height = TileAssembler::kMaxHeight;
+  tiny_tiles.tile_size = 1;
+  EXPECT_EQ(assembler.AddManifest(tiny_tiles), TileAssembler::FrameResult::kRefused);
+  EXPECT_EQ(assembler.image(), before);
+  tiny_tiles.tile_size = 32;  // 120 x 68 tiles: within the limit
+  EXPECT_NE(assembler.AddManifest(tiny_tiles), TileAssembler::FrameResult::kRefused);
 }
 
 TEST(TileAssembler, FollowsANewImageSize) {

@@ -139,6 +139,9 @@ TEST(CheckpointCodec, HostileCheckpointsAreRefusedWithTheFieldNamed) {
   ExpectRefused([](checkpoint_t& m) { m.scene.timeline.keys[0].law = 9; }, "scene.timeline.keys[0]");
   ExpectRefused([nan](checkpoint_t& m) { m.scene.glide_elapsed = nan; }, "glide_elapsed");
   ExpectRefused([](checkpoint_t& m) { m.substeps = 0; }, "substeps");
+  // More than a session's checks let a flag need: a step of 65536 substeps times the guard's 16.
+  ExpectRefused([](checkpoint_t& m) { m.substeps = sim::kMaxSubsteps + 1; },
+                "substeps: 4097; allowed 1 .. 4096");
   ExpectRefused([](checkpoint_t& m) { m.guard_factor = 1000; }, "guard_factor");
   ExpectRefused([nan](checkpoint_t& m) { m.wind_carried = nan; }, "wind_carried");
   ExpectRefused([](checkpoint_t& m) { m.timeline_segment = -5; }, "timeline_segment");

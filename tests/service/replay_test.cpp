@@ -137,6 +137,30 @@ TEST(Replay, ACutLogReplaysUpToItsLastWholeEvent) {
   std::remove(path.c_str());
 }
 
+TEST(Replay, AnEventFarPastTheReplayEndsItAsADamagedLog) {
+  // A STATE whose step number was damaged: the replay does not step a billion steps to reach it.
+  const std::string path = TempPath("far.lcmlog");
+  {
+    const Channels channels;
+    LogPublisher log(path, kStart);
+    Session session(testing::SmallVerletScene());
+    Journal(&log, channels).AtBoundary(session, log.utime());
+    session.Step();
+    state_t state = MakeStateMessage(session, log.utime());
+    log.Publish(channels.state, state);
+    state.step = 1'000'000'000;
+    log.Publish(channels.state, state);
+    log.Close();
+  }
+  const ReplayReport report = Replay(path, {});
+  EXPECT_TRUE(report.ok()) << report.error << report.divergence;
+  EXPECT_EQ(report.states_checked, 1);
+  EXPECT_EQ(report.last_step, 1);
+  EXPECT_NE(report.log_end.find("FLAGSIM_STATE at step 1000000000"), std::string::npos) << report.log_end;
+  EXPECT_NE(report.log_end.find("damaged"), std::string::npos) << report.log_end;
+  std::remove(path.c_str());
+}
+
 TEST(Replay, NothingToReplayIsSaid) {
   const std::string path = TempPath("whole2.lcmlog");
   Record(path, Recording{0, -1, 100});

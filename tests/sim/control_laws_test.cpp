@@ -34,6 +34,23 @@ TEST(ControlLaws, ValuesAtKnownPoints) {
   EXPECT_NEAR(Interpolate(ControlLaw::kCubic, Keys(), 2.0), 4.0 + (4.0 - 16.0 / 3.0) / 8.0, 1e-12);
 }
 
+// Keys a denormal's breadth apart (a KEYFRAME command may put them there): the cubic's rates
+// would be infinite, and its value NaN; scaled by the span first, they stay finite, and so does
+// every law's value and range.
+TEST(ControlLaws, KeysAlmostTogetherGiveFiniteValues) {
+  const Segment close{0, 1.7e-307, 1500, 2500, 0, 1500, 1.7e-307, 2500};
+  for (const ControlLaw law :
+       {ControlLaw::kStep, ControlLaw::kLinear, ControlLaw::kSmooth, ControlLaw::kCubic}) {
+    for (const double t : {0.0, 1e-307, 1.7e-307, 1.0}) {
+      const double value = Interpolate(law, close, t);
+      EXPECT_TRUE(value >= 1500 && value <= 2500)
+          << ControlLawNames()[int(law)] << " at " << t << ": " << value;
+    }
+    const ValueRange range = RangeOver(law, close);
+    EXPECT_TRUE(std::isfinite(range.low) && std::isfinite(range.high)) << ControlLawNames()[int(law)];
+  }
+}
+
 // The rate of change, by central differences, just inside the segment at each end.
 double RateAt(ControlLaw law, const Segment& segment, double t) {
   const double h = 1e-6;

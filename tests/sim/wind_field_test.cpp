@@ -84,6 +84,19 @@ TEST(NoiseCursor, IsContinuousAcrossLatticePoints) {
   for (int i = -3; i < 3; ++i) EXPECT_NEAR(noise(i - 1e-9), noise(i + 1e-9), 1e-7);
 }
 
+// A checkpoint from outside can carry a wind state whose gust coordinate is astronomically far,
+// or not a number: the noise stays defined (no cell index out of int64_t's range).
+TEST(NoiseCursor, AnyUHasANoiseValue) {
+  NoiseCursor noise(5);
+  for (const double u : {1e300, -1e300, 0x1p62, -0x1p63, 0x1p52 + 3}) {
+    const double value = noise(u);
+    EXPECT_TRUE(value >= -1 && value <= 1) << "u = " << u;
+  }
+  EXPECT_EQ(noise(0x1p53 + 6), NoiseCursor(5)(6.0)) << "periodic over 2^52 cells";
+  EXPECT_EQ(noise(std::nan("")), 0);
+  EXPECT_EQ(noise(INFINITY), 0);
+}
+
 TEST(NoiseCursor, KeptLatticeValuesGiveWhatFreshOnesGive) {
   NoiseCursor kept(5);
   // Forwards, backwards, within a cell and across several.
