@@ -4,6 +4,7 @@
 #   scripts/install-deps.sh          build and run
 #   scripts/install-deps.sh --browser  also Chromium, for the live view's browser tests
 #   scripts/install-deps.sh --java   also a JDK, for the lcm-spy types jar
+#   scripts/install-deps.sh --sanitize  also clang 14, its sanitizer runtimes and symbolizer (test.sh --sanitize)
 #   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL (the llvmpipe comparison), Bullet (the soft body
 #                                    comparison) and gnuplot (charts)
 set -euo pipefail
@@ -28,8 +29,9 @@ for option in "$@"; do
   case $option in
     --browser) packages+=(chromium) ;;
     --java) packages+=(default-jdk-headless) ;;
+    --sanitize) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;  # llvm-14: llvm-symbolizer, for reports
     --bench) packages+=(libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox libbullet-dev) ;;
-    *) echo "install-deps: unknown option $option (known: --browser, --java, --bench)" >&2; exit 2 ;;
+    *) echo "install-deps: unknown option $option (known: --browser, --java, --sanitize, --bench)" >&2; exit 2 ;;
   esac
 done
 # Node.js and npm build the live view's page (and run its tests): the machine's own if it has
