@@ -4,9 +4,10 @@
 #   scripts/install-deps.sh          build and run
 #   scripts/install-deps.sh --browser  also Chromium, for the live view's browser tests
 #   scripts/install-deps.sh --java   also a JDK, for the lcm-spy types jar
+#   scripts/install-deps.sh --sanitize  also clang 14, its sanitizer runtimes and symbolizer (test.sh --sanitize)
 #   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL (the llvmpipe comparison), Bullet (the soft body
 #                                    comparison) and gnuplot (charts)
-#   scripts/install-deps.sh --fuzz   also clang and libFuzzer, for the fuzz targets (scripts/fuzz.sh)
+#   scripts/install-deps.sh --fuzz   also clang 14 and libFuzzer, for the fuzz targets (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -29,9 +30,10 @@ for option in "$@"; do
   case $option in
     --browser) packages+=(chromium) ;;
     --java) packages+=(default-jdk-headless) ;;
+    --sanitize) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;  # llvm-14: llvm-symbolizer, for reports
     --bench) packages+=(libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox libbullet-dev) ;;
-    --fuzz) packages+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev) ;;
-    *) echo "install-deps: unknown option $option (known: --browser, --java, --bench, --fuzz)" >&2; exit 2 ;;
+    --fuzz) packages+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev llvm-14) ;;
+    *) echo "install-deps: unknown option $option (known: --browser, --java, --sanitize, --bench, --fuzz)" >&2; exit 2 ;;
   esac
 done
 # Node.js and npm build the live view's page (and run its tests): the machine's own if it has

@@ -177,7 +177,7 @@ TEST(EventLogReader, AMissingFileOrADirectoryIsNamed) {
   } catch (const std::runtime_error& error) {
     EXPECT_NE(std::string(error.what()).find("/nonexistent/run.lcmlog"), std::string::npos);
   }
-  EXPECT_THROW(EventLogReader(::testing::TempDir()), std::runtime_error);
+  EXPECT_THROW(EventLogReader{::testing::TempDir()}, std::runtime_error);  // braces: not a declaration
 }
 
 TEST(EventLogReader, AFileThatIsNotALogSaysSo) {
