@@ -172,7 +172,7 @@ void RecordSession(const std::string& log_path) {
   ServerOptions options;
   options.clock = [&now] { return now; };
   Server server(bus, channels, SessionScene(), options);
-  LogRecorder recorder(bus, channels.AllChannels(), log_path);
+  LogRecorder recorder(bus, channels, log_path);
   CommandClient client(bus, channels, 5.0);
   client.WhileWaiting([&] {
     now += 1.0 / 240;
