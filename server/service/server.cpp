@@ -82,14 +82,15 @@ double Server::Tick(double now) {
   const double until_step =
       session_.simulation().sleeping() ? kMaxWait : session_.scene().sim.dt - accumulator_;
   const double longest = keyframe_request_ >= 0 ? kKeyframeWait : kMaxWait;
-  return std::clamp(std::min(until_step, next_second_ - now), 0.0, longest);
+  const double until_due = std::min({until_step, next_second_ - now, UntilKeyframeDue(now)});
+  return std::clamp(until_due, 0.0, longest);
 }
 
 // Real time: the accumulator owes the simulation the clock's time since the last tick, in whole
 // steps; a loop that fell far behind drops the excess rather than spiralling. --fast: steps for
 // kFastBatch of the clock (at least one), then the publications get their turn. In real time a
 // batch ends after kSteppingBatch of the clock, and what is still owed is stepped at the next
-// tick. The bus is handled after every step: a keyframe request ends the batch.
+// tick. The bus is handled after every step: a keyframe request due ends the batch.
 void Server::StepDue(double now) {
   const double dt = session_.scene().sim.dt;
   accumulator_ = options_.fast ? 0.0 : std::min(accumulator_ + (now - last_tick_), kMaxCatchUp);
@@ -105,9 +106,9 @@ void Server::StepDue(double now) {
     AfterStep();
     if (end >= deadline) break;
     // Commands take effect at the next step's start, as if the batch ended here; a keyframe
-    // request ends it, so that its frame need not wait for the rest of the batch.
+    // request whose turn has come ends it, so that its frame need not wait for the rest of the batch.
     bus_.HandleAll();
-    if (intake_.RefreshPending()) break;
+    if (KeyframeDue(end)) break;
   }
   if (options_.fast) accumulator_ = 0;
 }
@@ -132,7 +133,7 @@ void Server::AtBoundary() {
 }
 
 void Server::PublishDue(double now) {
-  const int64_t request = intake_.TakeRefreshRequest();
+  const int64_t request = TakeKeyframeRequest(now);
   const bool refresh = request >= 0;
   if (refresh) {
     journal_.Refresh(session_, UnixMicros());
@@ -160,6 +161,28 @@ void Server::PublishDue(double now) {
     PublishStatus(now);
     next_second_ = std::max(next_second_ + 1.0, now);
   }
+}
+
+// A keyframe request costs a CHECKPOINT, a full STATE and a keyframe: taken at most once per
+// 1/kKeyframesPerSecond of the clock. One that comes sooner waits for that time, never dropped;
+// requests that wait together are answered by one keyframe naming the latest. Returns its id,
+// or -1 when none is taken now.
+int64_t Server::TakeKeyframeRequest(double now) {
+  const int64_t asked = intake_.TakeRefreshRequest();
+  if (asked >= 0) keyframe_asked_ = asked;
+  if (!KeyframeDue(now)) return -1;
+  keyframe_answered_ = now;
+  return std::exchange(keyframe_asked_, -1);
+}
+
+// Whether a keyframe request waits and its turn has come.
+bool Server::KeyframeDue(double now) const { return UntilKeyframeDue(now) <= 0; }
+
+// s on the clock until a waiting keyframe request may be taken (0 or less: now); infinite when
+// none waits.
+double Server::UntilKeyframeDue(double now) const {
+  if (keyframe_asked_ < 0 && !intake_.RefreshPending()) return INFINITY;
+  return keyframe_answered_ + 1.0 / kKeyframesPerSecond - now;
 }
 
 void Server::PublishState() {

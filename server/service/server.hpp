@@ -14,7 +14,9 @@
 //   paced publisher      sends them no faster than the receivers keep up (paced_publisher.hpp)
 //
 // A frame due while the last is still in the stage or being sent is skipped, never queued; a
-// keyframe asked for by REFRESH waits for the stage instead, and goes next.
+// keyframe asked for by REFRESH waits for the stage instead, and goes next. Keyframe requests
+// (each a CHECKPOINT, a full STATE and a keyframe) are answered at most kKeyframesPerSecond
+// times a second: one that comes sooner waits for its turn, coalesced with any after it.
 //
 // The loop reads time from an injected clock: tests drive it with a simulated one.
 #pragma once
@@ -83,6 +85,7 @@ class Server {
 
   static constexpr double kMaxCatchUp = 0.1;  ///< s of wall time a late loop may step to catch up
   static constexpr double kTablesPerSecond = 10;  ///< most answers to tables-only REFRESH questions
+  static constexpr double kKeyframesPerSecond = 10;  ///< most answers to keyframe REFRESH requests
 
  private:
   /// What the session starts from: a scene, or a checkpoint's snapshot (then `resumed`).
@@ -96,6 +99,9 @@ class Server {
   void AfterStep();
   void AtBoundary();
   void PublishDue(double now);
+  int64_t TakeKeyframeRequest(double now);
+  bool KeyframeDue(double now) const;
+  double UntilKeyframeDue(double now) const;
   void PublishState();
   void PublishParams();
   void PublishTimeline();
@@ -123,6 +129,8 @@ class Server {
   BoundarySchedule schedule_;  ///< STATE and frames, on simulated time
   bool frame_due_ = false;
   int64_t keyframe_request_ = -1;     ///< a REFRESH to answer with the next frame; -1: none
+  int64_t keyframe_asked_ = -1;       ///< a REFRESH waiting for its turn (kKeyframesPerSecond); -1: none
+  double keyframe_answered_ = -INFINITY;  ///< s on the clock: when a keyframe request was last taken
   bool integrator_replaced_ = false;  ///< by the guard: PARAMS is due
   bool drawn_asleep_ = false;         ///< the last frame was drawn with the flag asleep
   int64_t drawn_revision_ = -1;       ///< the session's revision when it was drawn

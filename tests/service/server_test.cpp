@@ -243,5 +243,54 @@ TEST_F(ServerTest, AQuestionGetsTheTablesAndNoMoreThanTenTimesASecond) {
   EXPECT_EQ(checkpoints, 0);
 }
 
+// Each keyframe request costs a CHECKPOINT, a full STATE and a keyframe: a flood of them over one
+// second of the clock gets at most kKeyframesPerSecond answers, and the last request, sent
+// between two of them, is still answered (it waits for its turn, it is not dropped).
+TEST_F(ServerTest, AFloodOfKeyframeRequestsGetsTenAnswersASecondAndTheLastIsAnswered) {
+  scene_.service.frame_rate = 0;  // no frames but those asked for
+  Server server(bus_, channels_, scene_, options_);
+  int checkpoints = 0;
+  bus_.Subscribe(channels_.checkpoint, [&](const std::string&, const uint8_t*, size_t) { ++checkpoints; });
+  server.Tick(now_);
+  bus_.HandleAll();
+  ASSERT_EQ(checkpoints, 1);  // the start's
+  checkpoints = 0;
+  refresh_request_t request{};
+  constexpr int kRequests = 500;  // one every 2 ms for a second, each from its own viewer
+  for (int k = 0; k < kRequests; ++k) {
+    request.client_id = "viewer-" + std::to_string(k);
+    request.sequence = k;
+    const std::vector<uint8_t> bytes = testing::Encode(request);
+    bus_.Publish(channels_.refresh, bytes.data(), bytes.size());
+    server.Tick(now_ += 0.002);
+    server.DrainFrames();
+  }
+  bus_.HandleAll();
+  EXPECT_LE(checkpoints, int(Server::kKeyframesPerSecond));
+  EXPECT_GE(checkpoints, 2);
+  // The last request came 0.002 s before the flood's end: its turn comes within 0.1 s.
+  const double flood_end = now_;
+  while (now_ < flood_end + 0.12) {
+    server.Tick(now_ += 0.002);
+    server.DrainFrames();
+  }
+  // The stage and the paced publisher are threads of their own: the keyframe goes once they are free.
+  const auto answered = [&] {
+    return std::any_of(manifests_.begin(), manifests_.end(),
+                       [&](const frame_t& manifest) { return manifest.request_id == kRequests - 1; });
+  };
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!answered() && std::chrono::steady_clock::now() < until) {
+    server.Tick(now_);  // the clock stands: no new turn, only the frame that waits
+    server.DrainFrames();
+    bus_.Handle(1);
+  }
+  EXPECT_TRUE(answered());
+  EXPECT_LE(checkpoints, int(Server::kKeyframesPerSecond) + 1);
+  const auto keyframes = std::count_if(manifests_.begin(), manifests_.end(),
+                                       [](const frame_t& manifest) { return manifest.request_id >= 0; });
+  EXPECT_LE(keyframes, Server::kKeyframesPerSecond + 1);
+}
+
 }  // namespace
 }  // namespace flagsim
