@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "common/printable_text.hpp"
 #include "messages/command_key.hpp"
 
 namespace flagsim {
@@ -38,10 +39,10 @@ int Report(const Link& link, const CommandOutcome& outcome) {
   switch (outcome.result) {
     case CommandOutcome::kAccepted:
       std::printf("accepted at step %lld\n", static_cast<long long>(outcome.step));
-      if (!outcome.reason.empty()) std::printf("note: %s\n", outcome.reason.c_str());
+      if (!outcome.reason.empty()) std::printf("note: %s\n", TerminalText(outcome.reason).c_str());
       return kOk;
     case CommandOutcome::kRejected:
-      std::fprintf(stderr, "flagctl: rejected: %s\n", outcome.reason.c_str());
+      std::fprintf(stderr, "flagctl: rejected: %s\n", TerminalText(outcome.reason).c_str());
       return kRejected;
     case CommandOutcome::kNoAnswer:
       break;

@@ -1,8 +1,11 @@
 #include "client/printing.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <vector>
+
+#include "common/printable_text.hpp"
 
 namespace flagsim {
 namespace {
@@ -39,25 +42,26 @@ std::string DefaultText(const parameter_t& row) {
 }  // namespace
 
 void PrintParams(const params_t& params, std::ostream& out) {
-  size_t name_width = 4, value_width = 5, unit_width = 4, range_width = 5;
+  // Each string from the bus through TerminalText: what a server sends cannot drive the terminal.
+  std::vector<std::array<std::string, 6>> rows = {
+      {"name", "value", "unit", "range", "default", "description"}};
   for (const parameter_t& row : params.parameters) {
-    name_width = std::max(name_width, row.name.size());
-    value_width = std::max(value_width, row.value_text.size());
-    unit_width = std::max(unit_width, row.unit.size());
-    range_width = std::max(range_width, Range(row).size());
+    rows.push_back({TerminalText(row.name), TerminalText(row.value_text), TerminalText(row.unit),
+                    TerminalText(Range(row)), TerminalText(DefaultText(row)), TerminalText(row.description)});
+  }
+  size_t name_width = 0, value_width = 0, unit_width = 0, range_width = 0;
+  for (const auto& row : rows) {
+    name_width = std::max(name_width, row[0].size());
+    value_width = std::max(value_width, row[1].size());
+    unit_width = std::max(unit_width, row[2].size());
+    range_width = std::max(range_width, row[3].size());
   }
   char line[1024];
-  const auto print = [&](const std::string& name, const std::string& value, const std::string& unit,
-                         const std::string& range, const std::string& fallback,
-                         const std::string& description) {
+  for (const auto& [name, value, unit, range, fallback, description] : rows) {
     std::snprintf(line, sizeof(line), "%-*s  %-*s  %-*s  %-*s  %-10s  %s\n", int(name_width), name.c_str(),
                   int(value_width), value.c_str(), int(unit_width), unit.c_str(), int(range_width),
                   range.c_str(), fallback.c_str(), description.c_str());
     out << line;
-  };
-  print("name", "value", "unit", "range", "default", "description");
-  for (const parameter_t& row : params.parameters) {
-    print(row.name, row.value_text, row.unit, Range(row), DefaultText(row), row.description);
   }
 }
 
@@ -77,7 +81,7 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 "recoveries:        %lld\n",
                 status.uptime, status.sim_time, static_cast<long long>(status.step), status.real_time_factor,
                 status.steps_per_second, status.substeps, status.step_time_us, status.num_nodes,
-                status.integrator.c_str(), status.threads, status.sleeping ? ", sleeping" : "",
+                TerminalText(status.integrator).c_str(), status.threads, status.sleeping ? ", sleeping" : "",
                 status.state_rate_hz, status.publish_time_us, status.frame_rate_hz, status.render_time_us,
                 status.encode_time_us, status.tiles_per_frame, status.frame_bytes,
                 static_cast<long long>(status.frames_skipped), status.bytes_per_second,
@@ -85,8 +89,9 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 static_cast<long long>(status.commands_rejected),
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;
-  if (!status.last_recovery.empty()) out << "last recovery:     " << status.last_recovery << "\n";
-  out << "authentication:    " << status.command_authentication << "\n";
+  if (!status.last_recovery.empty())
+    out << "last recovery:     " << TerminalText(status.last_recovery) << "\n";
+  out << "authentication:    " << TerminalText(status.command_authentication) << "\n";
   const int64_t refused = status.commands_unsigned + status.commands_unknown_key + status.commands_bad_mac +
                           status.commands_replayed + status.commands_stale;
   if (refused > 0) {
@@ -121,7 +126,7 @@ std::string LawName(int8_t law) {
 std::vector<std::string> KeyColumns(const timeline_key_t& key) {
   std::string parameters;
   for (size_t i = 0; i < key.names.size() && i < key.values.size(); ++i) {
-    parameters += (i ? " " : "") + key.names[i] + "=" + Number(key.values[i]);
+    parameters += (i ? " " : "") + TerminalText(key.names[i]) + "=" + Number(key.values[i]);
   }
   return {Number(key.time),
           LawName(key.law),

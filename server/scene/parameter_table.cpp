@@ -4,6 +4,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "common/printable_text.hpp"
 #include "server/sim/integrator.hpp"
 #include "server/sim/simulation.hpp"
 
@@ -88,23 +89,24 @@ bool ParseBoolean(const std::string& text, double* value) {
 std::string Parse(const Parameter& parameter, const std::string& text, double* value) {
   switch (parameter.kind) {
     case ParameterKind::kBoolean:
-      return ParseBoolean(text, value) ? "" : "'" + text + "' is not a switch";
+      return ParseBoolean(text, value) ? "" : "'" + PrintableText(text) + "' is not a switch";
     case ParameterKind::kChoice:
       for (size_t i = 0; i < parameter.choices.size(); ++i) {
         if (text == parameter.choices[i]) return *value = double(i), "";
       }
-      return "'" + text + "' is not a known name";
+      return "'" + PrintableText(text) + "' is not a known name";
     case ParameterKind::kInteger: {
       long long integer = 0;
       const char* end = text.data() + text.size();
       const auto result = std::from_chars(text.data(), end, integer);
-      if (result.ec != std::errc() || result.ptr != end) return "'" + text + "' is not an integer";
+      if (result.ec != std::errc() || result.ptr != end)
+        return "'" + PrintableText(text) + "' is not an integer";
       *value = double(integer);
       return "";
     }
     case ParameterKind::kReal:
-      if (!ParseNumber(text, value)) return "'" + text + "' is not a number";
-      if (!std::isfinite(*value)) return "'" + text + "' is not a finite number";
+      if (!ParseNumber(text, value)) return "'" + PrintableText(text) + "' is not a number";
+      if (!std::isfinite(*value)) return "'" + PrintableText(text) + "' is not a finite number";
       return "";
   }
   return "unknown kind";
@@ -226,12 +228,12 @@ std::string ParameterTable::Assign(const std::string& name, const std::string& t
   if (parameter == nullptr) {
     std::string known;
     for (const Parameter& each : parameters_) known += (known.empty() ? "" : ", ") + each.name;
-    return "unknown parameter '" + name + "'; known: " + known;
+    return "unknown parameter '" + PrintableText(name) + "'; known: " + known;
   }
   double value = 0;
   std::string problem = Parse(*parameter, text, &value);
   if (problem.empty() && (value < parameter->min_value || value > parameter->max_value)) {
-    problem = text + " is out of range";
+    problem = PrintableText(text) + " is out of range";
   }
   if (!problem.empty()) return name + ": " + problem + "; allowed " + parameter->AllowedText();
   parameter->set(*scene, value);

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "common/printable_text.hpp"
 #include "server/render/camera_moves.hpp"
 #include "server/scene/parameter_table.hpp"
 #include "server/sim/integrator.hpp"
@@ -51,7 +52,7 @@ std::string CheckParameters(const std::vector<sim::ParameterControl>& parameters
     const sim::ParameterControl& each = parameters[i];
     const Parameter* parameter = ParameterTable::Get().Find(each.name);
     if (parameter == nullptr) {
-      return what + ".parameters: unknown parameter '" + each.name +
+      return what + ".parameters: unknown parameter '" + PrintableText(each.name) +
              "'; animatable: " + List(AnimatableNames());
     }
     const std::string field = what + ".parameters." + each.name;

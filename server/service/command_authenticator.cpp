@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <iterator>
 
+#include "common/printable_text.hpp"
+
 namespace flagsim {
 namespace {
 
@@ -61,7 +63,7 @@ CommandAuthenticator::Verdict CommandAuthenticator::Unknown(const std::string& k
                   "this server takes only commands signed with one of its keys "
                   "(flagctl --key-file FILE)");
   return Refuse(Refusal::kUnknownKey,
-                "'" + key_id.substr(0, CommandKey::kMaxNameLength) + "' is none of this server's keys");
+                "'" + PrintableText(key_id, CommandKey::kMaxNameLength) + "' is none of this server's keys");
 }
 
 CommandAuthenticator::Verdict CommandAuthenticator::BadMac(const std::string& key_id) const {
@@ -87,11 +89,12 @@ CommandAuthenticator::Verdict CommandAuthenticator::CheckFreshAndNew(const std::
   if (last != seen_.end()) {
     const Seen& seen = last->second;
     if (sequence < seen.sequence)
-      return Refuse(Refusal::kReplayed, "sequence " + std::to_string(sequence) + " from " + client_id +
-                                            ", which has already sent " + std::to_string(seen.sequence));
+      return Refuse(Refusal::kReplayed, "sequence " + std::to_string(sequence) + " from " +
+                                            PrintableText(client_id) + ", which has already sent " +
+                                            std::to_string(seen.sequence));
     if (sequence == seen.sequence && utime <= seen.utime)
-      return Refuse(Refusal::kReplayed, "sequence " + std::to_string(sequence) + " from " + client_id +
-                                            " with a time stamp already seen");
+      return Refuse(Refusal::kReplayed, "sequence " + std::to_string(sequence) + " from " +
+                                            PrintableText(client_id) + " with a time stamp already seen");
   }
   seen_[client] = {sequence, utime};
   if (seen_.size() > kPruneAbove) Prune(now_utime);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "common/printable_text.hpp"
 #include "messages/checked_decode.hpp"
 #include "messages/utime.hpp"
 #include "server/scene/scene_timeline.hpp"
@@ -22,13 +23,6 @@ std::string CheckClientId(const std::string& client_id) {
     if (c < 0x21 || c > 0x7e) return "client_id: allowed printable ASCII without spaces";
   }
   return "";
-}
-
-/// `text` with every byte that is not printable ASCII as '?': fit for a log line.
-std::string Printable(std::string text) {
-  for (char& c : text)
-    if (c < 0x20 || c > 0x7e) c = '?';
-  return text;
 }
 
 /// Whether a command must be signed when the server has keys: all but a reader's question,
@@ -118,6 +112,8 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   ack.channel = channels_.Unprefixed(channel);
   ack.step = session_.simulation().state().step;
   ack.reason = CheckClientId(command->client_id);
+  // A client id refused is answered and logged as printable text, cut to the length allowed.
+  if (!ack.reason.empty()) ack.client_id = PrintableText(command->client_id, kMaxClientIdLength);
   const int64_t recoveries = session_.simulation().recoveries();
   note_.clear();
   if (ack.reason.empty()) ack.reason = (this->*apply)(*command);
@@ -240,7 +236,7 @@ void CommandIntake::Refuse(const std::string& channel, const std::string& client
   }
   if (++refusals_in_second_ > kRefusalAnswersPerSecond) return;
   ack_t ack;
-  ack.client_id = Printable(client_id.substr(0, kMaxClientIdLength));
+  ack.client_id = PrintableText(client_id, kMaxClientIdLength);
   ack.sequence = sequence;
   ack.channel = channels_.Unprefixed(channel);
   ack.accepted = false;

@@ -71,6 +71,27 @@ TEST(ParameterTable, UnknownNamesAreRejectedWithTheKnownOnes) {
   EXPECT_NE(reason.find("stiffness"), std::string::npos);
 }
 
+// What a PARAM sends is echoed in its answer as printable text of bounded length: a 64 KiB
+// name or value with escape sequences takes a line of the reason, not 64 KiB of control bytes.
+TEST(ParameterTable, ANameOrValueIsEchoedPrintableAndCut) {
+  const std::string hostile = "\x1b[2J" + std::string(64 * 1024, 'x');
+  Scene scene;
+  for (const std::string& reason :
+       {Table().Assign("stiffness", hostile, &scene), Table().Assign("cols", hostile, &scene),
+        Table().Assign("relative_wind", hostile, &scene), Table().Assign("shading", hostile, &scene),
+        Table().Assign(hostile, "1", &scene)}) {
+    EXPECT_LT(reason.size(), 1000u) << reason.substr(0, 200);
+    EXPECT_EQ(reason.find('\x1b'), std::string::npos) << reason.substr(0, 200);
+    EXPECT_NE(reason.find("'\\x1b[2Jxxx"), std::string::npos) << reason.substr(0, 200);
+    EXPECT_NE(reason.find("xxx...'"), std::string::npos) << reason.substr(0, 200);
+  }
+  const std::string out_of_range = "1" + std::string(200, '0');  // 1e200: a number, of 201 digits
+  const std::string reason = Table().Assign("stiffness", out_of_range, &scene);
+  EXPECT_EQ(reason.rfind("stiffness: 100000000", 0), 0u) << reason;
+  EXPECT_NE(reason.find("... is out of range; allowed 1 .. 1e+05 N/m"), std::string::npos) << reason;
+  EXPECT_EQ(Values(scene), Values(Scene{}));
+}
+
 TEST(ParameterTable, DefaultsAndLimitsAreAccepted) {
   for (const Parameter& parameter : Table().parameters()) {
     for (const double value : {parameter.default_value(), parameter.min_value, parameter.max_value}) {

@@ -95,6 +95,9 @@ TEST(SceneTimeline, BadKeysNameTheFieldAndWhatIsAllowed) {
   EXPECT_NE(
       CheckKeyframe(Key(0, {{"colour", 1}}), "key").find("unknown parameter 'colour'; animatable: stiffness"),
       std::string::npos);
+  EXPECT_NE(CheckKeyframe(Key(0, {{"col\x1b[2J" + std::string(64, 'x'), 1}}), "key")
+                .find("unknown parameter 'col\\x1b[2J" + std::string(54, 'x') + "...'"),
+            std::string::npos);  // quoted as printable text, cut
   for (const double bad : {kNan, kInf, -kInf, -3.0, 1e9}) {
     const std::string reason = CheckKeyframe(Key(0, {{"stiffness", bad}}), "key");
     ExpectField(reason, "key.parameters.stiffness");

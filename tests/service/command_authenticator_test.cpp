@@ -81,6 +81,15 @@ TEST_F(CommandAuthenticatorTest, UnsignedAndUnknownKeysAreRefused) {
   EXPECT_EQ(RefusalOf(Signed(Key("stranger", 1), 1, kNow)), Refusal::kUnknownKey);
 }
 
+// The name of a key the server does not have is quoted as printable text, cut to the 32
+// characters a key's name may have.
+TEST_F(CommandAuthenticatorTest, AnUnknownKeysNameIsQuotedPrintableAndCut) {
+  const std::string reason =
+      Check(Signed(Key("\x1b]0;owned\x07" + std::string(5000, 'k'), 1), 1, kNow)).reason;
+  EXPECT_EQ(reason,
+            "unknown key: '\\x1b]0;owned\\x07" + std::string(16, 'k') + "...' is none of this server's keys");
+}
+
 TEST_F(CommandAuthenticatorTest, AForgedOrAlteredCommandHasABadMac) {
   // Claims the key "ops" but was signed with another secret.
   EXPECT_EQ(RefusalOf(Signed(Key("ops", 9), 1, kNow)), Refusal::kBadMac);

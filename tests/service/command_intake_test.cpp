@@ -162,6 +162,41 @@ TEST_F(CommandIntakeTest, CommandsWithoutAClientIdAreRejected) {
   EXPECT_EQ(answer->reason.rfind("client_id:", 0), 0u);
 }
 
+// A client id of more than 64 characters or with a byte that is not printable ASCII is rejected
+// with the rule it broke, and answered and logged as printable text cut to 64 characters: the
+// id as sent (up to 64 KiB, escape sequences and all) goes nowhere.
+TEST_F(CommandIntakeTest, AClientIdTooLongOrNotPrintableIsRejectedAndEchoedPrintable) {
+  std::vector<ack_t> answers;
+  bus_.Subscribe(channels_.ack, [&answers](const std::string&, const uint8_t* data, size_t size) {
+    std::string error;
+    if (auto ack = wire::CheckedDecode<ack_t>(data, size, 1 << 16, &error)) answers.push_back(*ack);
+  });
+  wind_command_t command = testing::SomeWindCommand();
+  const std::string longest(CommandIntake::kMaxClientIdLength, 'c');
+  for (const std::string& id : {longest + "c", "\x1b[2J" + std::string(60000, 'c'), std::string("tab\there"),
+                                std::string("space here"), std::string("del\x7f")}) {
+    command.client_id = id;
+    bus_.Publish(channels_.wind, command);
+    bus_.HandleAll();
+  }
+  ASSERT_EQ(answers.size(), 5u);
+  EXPECT_EQ(answers[0].reason, "client_id: 65 characters; allowed 1 .. 64");
+  EXPECT_EQ(answers[0].client_id, longest + "...");
+  EXPECT_EQ(answers[1].reason, "client_id: 60004 characters; allowed 1 .. 64");
+  EXPECT_EQ(answers[1].client_id, "\\x1b[2J" + std::string(57, 'c') + "...");
+  EXPECT_EQ(answers[2].client_id, "tab\\x09here");
+  EXPECT_EQ(answers[4].client_id, "del\\x7f");
+  for (size_t k = 2; k < answers.size(); ++k)
+    EXPECT_EQ(answers[k].reason, "client_id: allowed printable ASCII without spaces") << answers[k].client_id;
+  for (const ack_t& answer : answers) EXPECT_FALSE(answer.accepted);
+  EXPECT_EQ(stats().commands_rejected, 5);
+  EXPECT_EQ(scene().wind.velocity, Scene{}.wind.velocity);
+  command.client_id = longest;  // 64 printable characters are an id
+  bus_.Publish(channels_.wind, command);
+  bus_.HandleAll();
+  EXPECT_EQ(stats().commands_accepted, 1);
+}
+
 TEST_F(CommandIntakeTest, HostileBytesOnEveryCommandChannelAreCountedAndDropped) {
   std::mt19937 random(3);
   const std::vector<uint8_t> valid = testing::Encode(testing::SomeParamCommand());
