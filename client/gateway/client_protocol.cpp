@@ -3,6 +3,7 @@
 #include "client/gateway/bus_json.hpp"
 #include "client/gateway/foxglove_wire.hpp"
 #include "client/gateway/gateway.hpp"
+#include "common/printable_text.hpp"
 
 namespace flagsim::gateway {
 namespace {
@@ -26,6 +27,21 @@ const json& ArrayField(const json& message, const char* field, std::string* prob
     return kEmpty;
   }
   return *found;
+}
+
+/// "" if a client may follow `name`, as one of `count` names; else why not.
+std::string CheckFollowedName(const std::string& name, size_t count) {
+  if (name.size() > ClientProtocol::kMaxParameterNameLength) {
+    return "'" + PrintableText(name) + "' is " + std::to_string(name.size()) +
+           " characters long; allowed parameter names of up to " +
+           std::to_string(ClientProtocol::kMaxParameterNameLength) + " characters";
+  }
+  if (count > ClientProtocol::kMaxFollowedParameters) {
+    return std::to_string(count) + " names would be followed; allowed at most " +
+           std::to_string(ClientProtocol::kMaxFollowedParameters) +
+           " per client (the parameter table has fewer; no names follows them all)";
+  }
+  return "";
 }
 
 }  // namespace
@@ -179,6 +195,9 @@ void ClientProtocol::Unadvertise(const json& message) {
   if (!problem.empty()) Complain(problem);
 }
 
+// No names: all parameters (or none). Names are followed up to kMaxFollowedParameters of at most
+// kMaxParameterNameLength characters, a message's names all or none of them; an unknown name is
+// kept (the table may not have come yet) but never matches.
 void ClientProtocol::FollowParameters(const json& message, bool follow) {
   std::string problem;
   const json& names = ArrayField(message, "parameterNames", &problem);
@@ -187,14 +206,20 @@ void ClientProtocol::FollowParameters(const json& message, bool follow) {
     follows_all_parameters_ = follow;
     if (!follow) followed_parameters_.clear();
   }
+  std::set<std::string> followed = followed_parameters_;
   for (const json& name : names) {
     if (!name.is_string()) continue;
-    if (follow) {
-      followed_parameters_.insert(name.get<std::string>());
-    } else {
-      followed_parameters_.erase(name.get<std::string>());
+    const std::string& text = name.get_ref<const std::string&>();
+    if (!follow) {
+      followed.erase(text);
+      continue;
     }
+    problem = CheckFollowedName(text, followed.size() + (followed.count(text) ? 0 : 1));
+    if (!problem.empty())
+      return Complain("subscribeParameterUpdates: " + problem + "; none of this message's names followed");
+    followed.insert(text);
   }
+  followed_parameters_ = std::move(followed);
 }
 
 void ClientProtocol::OnParametersChanged(const json& values) {

@@ -45,6 +45,8 @@ class ClientProtocol {
  public:
   static constexpr size_t kMaxControlBytes = 4 << 20;
   static constexpr size_t kMaxClientChannels = 32;
+  static constexpr size_t kMaxFollowedParameters = 64;   ///< names a client follows (the table has fewer)
+  static constexpr size_t kMaxParameterNameLength = 64;  ///< characters of a followed name
 
   ClientProtocol(Gateway& gateway, int client_id);
   /// Tells the gateway its subscriptions are gone (it keeps images only while someone watches).

@@ -317,6 +317,36 @@ TEST_F(GatewayTest, ParameterUpdatesGoToClientsThatFollowThem) {
   EXPECT_TRUE(saw_damping);
 }
 
+// A client follows at most 64 parameter names of at most 64 characters: a message that would
+// pass either limit is answered with the limit and follows none of its names.
+TEST_F(GatewayTest, AClientFollowsOnlySoManyParameterNames) {
+  json names = {"damping"};
+  for (size_t k = 1; k < ClientProtocol::kMaxFollowedParameters; ++k)
+    names.push_back("name" + std::to_string(k));
+  client_.Send({{"op", "subscribeParameterUpdates"}, {"parameterNames", names}});
+  client_.Send({{"op", "subscribeParameterUpdates"}, {"parameterNames", {"one_too_many"}}});
+  client_.Send(
+      {{"op", "subscribeParameterUpdates"}, {"parameterNames", {std::string(70000, 'x'), "friction"}}});
+  client_.Read();
+  const std::vector<json> statuses = client_.Texts("status");
+  ASSERT_EQ(statuses.size(), 2u);
+  EXPECT_EQ(
+      statuses[0]["message"],
+      "subscribeParameterUpdates: 65 names would be followed; allowed at most 64 per client (the parameter "
+      "table has fewer; no names follows them all); none of this message's names followed");
+  EXPECT_EQ(statuses[1]["message"],
+            "subscribeParameterUpdates: '" + std::string(64, 'x') +
+                "...' is 70000 characters long; allowed parameter names of up to 64 characters; none of this "
+                "message's names followed");
+  client_.Call(kSetService, 1, R"({"parameters": {"damping": 0.2, "friction": 0.05}})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(1) > 0; }));
+  ASSERT_TRUE(RunUntil([&] { return !client_.Texts("parameterValues").empty(); }));
+  for (const json& values : client_.Texts("parameterValues")) {
+    for (const json& value : values["parameters"])
+      EXPECT_EQ(value["name"], "damping") << "friction was refused";
+  }
+}
+
 TEST_F(GatewayTest, ClientsMayPublishCommandsOnTheCommandTopics) {
   client_.Subscribe(kAcksChannel);
   client_.Send(
