@@ -6,6 +6,7 @@
 #include <boost/asio/posix/stream_descriptor.hpp>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "client/gateway/gateway.hpp"
 #include "client/gateway/http_session.hpp"
@@ -19,27 +20,40 @@ using tcp = net::ip::tcp;
 
 constexpr auto kTickInterval = std::chrono::milliseconds(20);  ///< command resends, status
 
-/// "HOST:PORT" (HOST may be [v6], a literal address or localhost) => endpoint; throws with a
-/// message that says what is allowed.
+/// PORT in decimal digits, 0 .. 65535; nullopt for anything else (a sign, a space, a letter, more).
+std::optional<unsigned short> ParsePort(const std::string& text) {
+  if (text.empty() || text.size() > 5) return std::nullopt;
+  unsigned port = 0;
+  for (const char c : text) {
+    if (c < '0' || c > '9') return std::nullopt;
+    port = port * 10 + unsigned(c - '0');
+  }
+  if (port > 65535) return std::nullopt;
+  return static_cast<unsigned short>(port);
+}
+
+}  // namespace
+
 tcp::endpoint ParseListen(const std::string& listen) {
   const size_t colon = listen.rfind(':');
   if (colon == std::string::npos) throw std::invalid_argument("--listen " + listen + ": expected HOST:PORT");
   std::string host = listen.substr(0, colon);
   if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
   if (host == "localhost") host = "127.0.0.1";
-  int port = -1;
-  try {
-    port = std::stoi(listen.substr(colon + 1));
-  } catch (const std::exception&) {
+  const std::string port_text = listen.substr(colon + 1);
+  const std::optional<unsigned short> port = ParsePort(port_text);
+  if (!port) {
+    throw std::invalid_argument("--listen " + listen + ": the port '" + port_text +
+                                "' is not one; allowed 0 .. 65535 in digits (0: any free port)");
   }
-  if (port < 0 || port > 65535)
-    throw std::invalid_argument("--listen " + listen + ": the port must be 0 .. 65535");
   boost::system::error_code error;
   const net::ip::address address = net::ip::make_address(host, error);
   if (error)
     throw std::invalid_argument("--listen " + listen + ": '" + host + "' is not an IP address or localhost");
-  return {address, static_cast<unsigned short>(port)};
+  return {address, *port};
 }
+
+namespace {
 
 /// The host part of the URLs to print.
 std::string UrlHost(const tcp::endpoint& endpoint) {

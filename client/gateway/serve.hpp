@@ -3,6 +3,7 @@
 // the gateway's ticks (command resends, its status), and SIGINT/SIGTERM, which end it.
 #pragma once
 
+#include <boost/asio/ip/tcp.hpp>
 #include <functional>
 #include <string>
 #include <vector>
@@ -21,6 +22,11 @@ struct ServeOptions {
   double command_timeout = 2.0;  ///< s to wait for a command's ACK
   CommandSigner signer;          ///< signs the commands it relays (flagctl --key-file)
 };
+
+/// "HOST:PORT" => the address to listen on: HOST an IP address (a v6 one in brackets too) or
+/// localhost, PORT 0 .. 65535 in digits (0: any free one). Throws std::invalid_argument with a
+/// message that names the text and what is allowed.
+boost::asio::ip::tcp::endpoint ParseListen(const std::string& listen);
 
 /// Serves until a signal. Prints the URLs to open on stdout. Returns 0, or 1 if it cannot
 /// listen (the reason on stderr).

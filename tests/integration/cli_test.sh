@@ -36,6 +36,9 @@ contains "camera needs a subcommand; allowed: rotate-x, rotate-y" "  that lists 
 expect 2 "--timeout 0 is a usage error" "$flagctl" --timeout 0 status
 contains "--timeout: 0 is out of range; allowed above 0" "  with the bound as typed"
 if [[ $(wc -c <"$work/out") -lt 200 ]]; then pass "  in a short message"; else fail "  a long message" "$work/out"; fi
+expect 2 "serve --listen with a port that is not all digits is a usage error" "$flagctl" --prefix NOBODY_ \
+  serve --listen 127.0.0.1:80x
+contains "the port '80x' is not one; allowed 0 .. 65535 in digits" "  that names the port and what is allowed"
 expect 0 "camera rotate-x --help" "$flagctl" camera rotate-x --help
 if [[ $(head -n 1 "$work/out") == "turn the scene about the x axis through the target" ]]; then
   pass "  says first what the move does"
