@@ -1,13 +1,15 @@
 // Checks of the command line that speak as the user typed: number ranges that name their bound
-// ("above 0", not CLI11's own, which prints the largest double in full), and an unknown or
-// missing subcommand named as such, with the allowed ones (CLI11 says only that one is required).
-// Header-only, for flagctl and flagd alike.
+// ("above 0", not CLI11's own, which prints the largest double in full), a channel prefix that
+// makes channel names, and an unknown or missing subcommand named as such, with the allowed ones
+// (CLI11 says only that one is required). Header-only, for flagctl and flagd alike.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <string>
 #include <vector>
+
+#include "messages/channels.hpp"
 
 namespace flagsim {
 
@@ -31,6 +33,11 @@ inline CLI::Validator ZeroOrMore() {
         return std::isfinite(value) && value >= 0 ? "" : input + " is out of range; allowed 0 or more";
       },
       "NONNEGATIVE");
+}
+
+/// A channel prefix: letters, digits and '_' (Channels::CheckPrefix). Shown in help as PREFIX.
+inline CLI::Validator ChannelPrefix() {
+  return CLI::Validator([](std::string& input) { return Channels::CheckPrefix(input); }, "PREFIX");
 }
 
 /// After a parse that failed with `error`, when it failed because the deepest subcommand given

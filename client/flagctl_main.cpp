@@ -24,7 +24,9 @@ void AddGlobalOptions(CLI::App& app, flagsim::Globals& globals) {
   app.fallthrough();
   app.add_option("--lcm-url", globals.lcm_url,
                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
-  app.add_option("--prefix", globals.prefix, "channel prefix of the server")->capture_default_str();
+  app.add_option("--prefix", globals.prefix, "channel prefix of the server: letters, digits and '_'")
+      ->check(flagsim::ChannelPrefix())
+      ->capture_default_str();
   app.add_option("--timeout", globals.timeout, "seconds to wait for an answer")
       ->check(flagsim::AboveZero())
       ->capture_default_str();

@@ -1,5 +1,7 @@
 #include "messages/channels.hpp"
 
+#include "common/printable_text.hpp"
+
 namespace flagsim {
 
 Channels::Channels(const std::string& prefix_in)
@@ -18,6 +20,19 @@ Channels::Channels(const std::string& prefix_in)
       timeline(prefix + "TIMELINE"),
       applied(prefix + "APPLIED"),
       checkpoint(prefix + "CHECKPOINT") {}
+
+std::string Channels::CheckPrefix(const std::string& prefix) {
+  const std::string allowed = "allowed 1 .. " + std::to_string(kMaxPrefixLength) + " letters, digits and '_'";
+  const std::string quoted = "'" + PrintableText(prefix) + "'";
+  if (prefix.empty() || prefix.size() > kMaxPrefixLength)
+    return quoted + " is " + std::to_string(prefix.size()) + " characters; " + allowed;
+  for (const char c : prefix) {
+    const bool letter = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+    if (!letter && !(c >= '0' && c <= '9') && c != '_')
+      return quoted + " is not a channel prefix; " + allowed;
+  }
+  return "";
+}
 
 std::string Channels::Unprefixed(const std::string& channel) const {
   return channel.compare(0, prefix.size(), prefix) == 0 ? channel.substr(prefix.size()) : channel;

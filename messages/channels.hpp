@@ -1,12 +1,21 @@
 // Channel names: a prefix (default "FLAGSIM_", so several servers can share a bus) plus a name.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace flagsim {
 
 struct Channels {
   static constexpr const char* kDefaultPrefix = "FLAGSIM_";
+  /// Characters of a prefix, at most: with the longest name (CHECKPOINT, 10) within the 63 of an
+  /// LCM channel name (LCM_MAX_CHANNEL_NAME_LENGTH).
+  static constexpr size_t kMaxPrefixLength = 53;
+
+  /// "" if `prefix` makes valid channel names: 1 .. kMaxPrefixLength letters, digits and '_';
+  /// else what is wrong and what is allowed. (An empty prefix would make the recorders take every
+  /// channel on the bus.)
+  static std::string CheckPrefix(const std::string& prefix);
 
   explicit Channels(const std::string& prefix = kDefaultPrefix);
 

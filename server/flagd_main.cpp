@@ -179,7 +179,9 @@ int main(int argc, char** argv) {
   CLI::App app{"flagd: a flag on a pole in the wind, simulated, steered and streamed over LCM"};
   app.add_option("--lcm-url", options.lcm_url,
                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
-  app.add_option("--prefix", options.prefix, "channel prefix, so several servers share a bus")
+  app.add_option("--prefix", options.prefix,
+                 "channel prefix, so several servers share a bus: letters, digits and '_'")
+      ->check(flagsim::ChannelPrefix())
       ->capture_default_str();
   CLI::Option* scene_option = app.add_option("--scene", options.scene,
                                              "a preset (breeze, calm, gale, hanging) or a scene file (.toml)")

@@ -1,0 +1,34 @@
+// Channel names: a prefix and a name, and the prefixes that make valid LCM channel names.
+#include "messages/channels.hpp"
+
+#include <gtest/gtest.h>
+
+namespace flagsim {
+namespace {
+
+TEST(Channels, NamesArePrefixed) {
+  const Channels channels("LAB_");
+  EXPECT_EQ(channels.wind, "LAB_WIND");
+  EXPECT_EQ(channels.Unprefixed(channels.checkpoint), "CHECKPOINT");
+  EXPECT_EQ(channels.AllChannels(), "LAB_.*");
+}
+
+TEST(Channels, APrefixIsLettersDigitsAndUnderscores) {
+  EXPECT_EQ(Channels::CheckPrefix(Channels::kDefaultPrefix), "");
+  EXPECT_EQ(Channels::CheckPrefix("lab_2"), "");
+  const std::string longest(Channels::kMaxPrefixLength, 'P');
+  EXPECT_EQ(Channels::CheckPrefix(longest), "");
+  EXPECT_LE(Channels(longest).checkpoint.size(), 63u);  // LCM_MAX_CHANNEL_NAME_LENGTH
+  EXPECT_EQ(Channels::CheckPrefix(""), "'' is 0 characters; allowed 1 .. 53 letters, digits and '_'");
+  EXPECT_EQ(Channels::CheckPrefix(longest + "P"),
+            "'" + longest + "P' is 54 characters; allowed 1 .. 53 letters, digits and '_'");
+  EXPECT_EQ(Channels::CheckPrefix("my-prefix"),
+            "'my-prefix' is not a channel prefix; allowed 1 .. 53 letters, digits and '_'");
+  for (const std::string bad : {"A.B", "A B", "A*", "A/B", "\xc3\xbc", "A\x1b"})
+    EXPECT_NE(Channels::CheckPrefix(bad).find("is not a channel prefix"), std::string::npos) << bad;
+  EXPECT_EQ(Channels::CheckPrefix("A\x1b"),
+            "'A\\x1b' is not a channel prefix; allowed 1 .. 53 letters, digits and '_'");
+}
+
+}  // namespace
+}  // namespace flagsim
