@@ -176,8 +176,12 @@ ReplayReport Replay(const std::string& path, const ReplayOptions& options,
   }
   if (going && reader->end() != EventLogReader::End::kClean) report.log_end = reader->problem();
   if (report.error.empty() && !replayer.started()) {
-    report.error = path + ": no whole CHECKPOINT on " + channels.checkpoint +
-                   " (a log recorded from a server that publishes checkpoints, with the same --prefix)";
+    // Where the reader stopped early ("LOG: at byte 0, event 0: not an LCM event log (...)") says
+    // more than that no checkpoint came before it.
+    const std::string none = "no whole CHECKPOINT on " + channels.checkpoint;
+    report.error =
+        (report.log_end.empty() ? path + ": " + none : report.log_end + "; " + none + " before it") +
+        " (a log recorded from a server that publishes checkpoints, with the same --prefix)";
   }
   if (progress) progress(1.0);
   return report;

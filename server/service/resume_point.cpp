@@ -18,9 +18,9 @@ namespace {
 constexpr size_t kMaxMessageBytes = 256 << 20;  ///< a checkpoint of the largest grid fits
 
 template <class Message>
-std::optional<Message> Decode(const std::vector<uint8_t>& data) {
-  std::string error;
-  return wire::CheckedDecode<Message>(data.data(), data.size(), kMaxMessageBytes, &error);
+std::optional<Message> Decode(const std::vector<uint8_t>& data, std::string* error = nullptr) {
+  std::string ignored;
+  return wire::CheckedDecode<Message>(data.data(), data.size(), kMaxMessageBytes, error ? error : &ignored);
 }
 
 /// The resume point as the log is read: each sound checkpoint replaces it.
@@ -39,10 +39,17 @@ class ResumeSearch {
 };
 
 void ResumeSearch::Checkpoint(const std::vector<uint8_t>& data) {
-  const std::optional<checkpoint_t> message = Decode<checkpoint_t>(data);
+  std::string problem;
+  const std::optional<checkpoint_t> message = Decode<checkpoint_t>(data, &problem);
   SessionSnapshot snapshot;
-  // A damaged one: the last sound one stands.
-  if (!message || !ReadCheckpoint(*message, &snapshot).empty()) return;
+  if (message) problem = ReadCheckpoint(*message, &snapshot);
+  if (!problem.empty()) {  // a damaged one: the last sound one stands, and the message says so
+    ++point_.checkpoints_refused;
+    point_.checkpoint_refusal = message ? problem : "a CHECKPOINT that does not decode: " + problem;
+    return;
+  }
+  point_.checkpoints_refused = 0;
+  point_.checkpoint_refusal.clear();
   point_.snapshot = std::move(snapshot);
   point_.step = point_.last_step = message->step;
   point_.sim_time = point_.last_time = message->sim_time;
@@ -66,6 +73,13 @@ void ResumeSearch::Progress(int64_t step, double sim_time) {
   if (!found() || step <= point_.last_step) return;
   point_.last_step = step;
   point_.last_time = sim_time;
+}
+
+/// "; 2[ later] CHECKPOINT(s) refused, the last: checkpoint at step 7500: substeps: ..."; "" if none was.
+std::string Refused(const ResumePoint& point, const std::string& later) {
+  if (point.checkpoints_refused == 0) return "";
+  return "; " + std::to_string(point.checkpoints_refused) + later +
+         " CHECKPOINT(s) refused, the last: " + point.checkpoint_refusal;
 }
 
 }  // namespace
@@ -101,9 +115,13 @@ ResumePoint FindResumePoint(const std::string& path, const std::string& prefix) 
   }
   if (reader->end() != EventLogReader::End::kClean) point.log_end = reader->problem();
   if (!search.found()) {
-    point.error = path + ": no whole CHECKPOINT on " + channels.checkpoint +
+    // Where the reader stopped early ("LOG: at byte 0, event 0: not an LCM event log (...)"), and
+    // the checkpoints refused, say more than that none was found.
+    const std::string none = "no whole CHECKPOINT on " + channels.checkpoint;
+    point.error = (point.log_end.empty() ? path + ": " + none : point.log_end + "; " + none + " before it") +
                   " to resume from (a log of flagd --record-inputs, or a recording of the bus, with the "
-                  "same --prefix)";
+                  "same --prefix)" +
+                  Refused(point, "");
   }
   return point;
 }
@@ -116,7 +134,7 @@ std::string DescribeResume(const ResumePoint& point) {
                 point.reason.c_str(), static_cast<long long>(point.step), point.sim_time,
                 static_cast<long long>(point.last_step), point.last_time, point.lost_seconds(),
                 static_cast<long long>(point.commands_lost));
-  std::string description = text;
+  std::string description = text + Refused(point, " later");
   if (!point.log_end.empty()) description += " (the log stops early: " + point.log_end + ")";
   return description;
 }

@@ -4,7 +4,8 @@
 //
 //   log, event by event (to its last whole one) =>
 //     CHECKPOINT  read (checkpoint_codec.hpp); a sound one becomes the resume point, and what
-//                 was counted after the last is forgotten
+//                 was counted after the last is forgotten; one that is not is counted and its
+//                 refusal kept, for the message
 //     APPLIED     a command after the resume point: lost
 //     STATUS      (once a second in an inputs log), STATE, APPLIED: how far the server had got,
 //                 in steps and simulated seconds
@@ -33,6 +34,10 @@ struct ResumePoint {
   int64_t last_step = -1;     ///< the furthest step the log speaks of
   double last_time = 0;       ///< s, simulated, there
   std::string log_end;        ///< "" for a log that ends between events, else where it stops
+  /// CHECKPOINTs after the resume point (in the whole log, when there is none) that did not
+  /// decode or read back, and why the last did not
+  int64_t checkpoints_refused = 0;
+  std::string checkpoint_refusal;
 
   double lost_seconds() const { return last_time - sim_time; }  ///< simulated, after the checkpoint
 };
@@ -41,8 +46,8 @@ struct ResumePoint {
 ResumePoint FindResumePoint(const std::string& path, const std::string& prefix);
 
 /// "the periodic checkpoint at step 5000 (t = 10.000 s); after it the log goes on to step 5867
-/// (t = 11.734 s): 1.734 simulated seconds and 2 commands are lost", and where the log stops
-/// early if it does.
+/// (t = 11.734 s): 1.734 simulated seconds and 2 commands are lost", the checkpoints after it
+/// that were refused, and where the log stops early if it does.
 std::string DescribeResume(const ResumePoint& point);
 
 }  // namespace flagsim

@@ -89,6 +89,9 @@ contains "every hash equal" "  and what it holds replays"
 echo "-- nothing to replay"
 expect 2 "flagd replay with another prefix" "$flagd" replay "$work/full.lcmlog" --prefix OTHER_
 contains "no whole CHECKPOINT" "  says there is no checkpoint"
+echo 'name = "gale"' >"$work/scene.lcmlog"
+expect 2 "flagd replay of a file that is not a log" "$flagd" replay "$work/scene.lcmlog"
+contains "scene.lcmlog: at byte 0, event 0: not an LCM event log" "  says so, in the reader's words"
 expect 2 "flagd replay of a missing file" "$flagd" replay "$work/none.lcmlog"
 expect 2 "flagd replay without a log" "$flagd" replay
 finish

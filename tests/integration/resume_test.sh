@@ -95,5 +95,8 @@ contains "excludes" "  says the two exclude each other"
 : >"$work/empty.lcmlog"
 expect 2 "a log without a checkpoint" "$flagd" --resume "$work/empty.lcmlog"
 contains "no whole CHECKPOINT" "  says so"
+echo 'name = "gale"' >"$work/scene.lcmlog"
+expect 2 "a file that is not a log" "$flagd" --resume "$work/scene.lcmlog"
+contains "scene.lcmlog: at byte 0, event 0: not an LCM event log" "  says so, in the reader's words"
 expect 2 "a log that does not exist" "$flagd" --resume "$work/none.lcmlog"
 finish

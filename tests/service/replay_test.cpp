@@ -161,6 +161,15 @@ TEST(Replay, AnEventFarPastTheReplayEndsItAsADamagedLog) {
   std::remove(path.c_str());
 }
 
+TEST(Replay, AFileThatIsNotALogSaysSo) {
+  const std::string path = TempPath("notalog.lcmlog");
+  std::ofstream(path) << "name = \"gale\"\n";
+  const std::string error = Replay(path, {}).error;
+  EXPECT_EQ(error.rfind(path + ": at byte 0, event 0: not an LCM event log", 0), 0u) << error;
+  EXPECT_NE(error.find("; no whole CHECKPOINT on FLAGSIM_CHECKPOINT before it"), std::string::npos) << error;
+  std::remove(path.c_str());
+}
+
 TEST(Replay, NothingToReplayIsSaid) {
   const std::string path = TempPath("whole2.lcmlog");
   Record(path, Recording{0, -1, 100});

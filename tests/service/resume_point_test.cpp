@@ -15,6 +15,7 @@
 
 #include "flagsim/status_t.hpp"
 #include "messages/channels.hpp"
+#include "server/service/checkpoint_codec.hpp"
 #include "server/service/command_apply.hpp"
 #include "server/service/journal.hpp"
 #include "server/service/log_publisher.hpp"
@@ -151,6 +152,55 @@ TEST(ResumePoint, SaysWhatIsLost) {
   EXPECT_EQ(DescribeResume(point),
             "the periodic checkpoint at step 5000 (t = 10.000 s); after it the log goes on to step 5867 "
             "(t = 11.734 s): 1.734 simulated seconds and 2 command(s) are lost");
+}
+
+// A file that is not a log says so, in the reader's own words, before it says that no checkpoint
+// came.
+TEST(ResumePoint, AFileThatIsNotALogSaysSo) {
+  const std::string path = TempPath("notalog.lcmlog");
+  std::ofstream(path) << "name = \"gale\"\n";
+  const std::string error = FindResumePoint(path, Channels::kDefaultPrefix).error;
+  EXPECT_EQ(error.rfind(path + ": at byte 0, event 0: not an LCM event log", 0), 0u) << error;
+  EXPECT_NE(error.find("; no whole CHECKPOINT on FLAGSIM_CHECKPOINT before it to resume from"),
+            std::string::npos)
+      << error;
+  std::remove(path.c_str());
+}
+
+// A checkpoint the codec refuses, or that does not decode, is passed over for the one before,
+// and counted and named: where there is none before, in the error; else in what the resume says.
+TEST(ResumePoint, RefusedCheckpointsAreCountedAndNamed) {
+  const std::string path = TempPath("refused.lcmlog");
+  const Channels channels;
+  Session session(testing::SmallVerletScene());
+  checkpoint_t refused = MakeCheckpointMessage(session.Snapshot(), "start", kStart);
+  refused.substeps = 65536;
+  const auto write = [&](bool sound_first) {
+    LogPublisher log(path, kStart);
+    if (sound_first)
+      log.Publish(channels.checkpoint, MakeCheckpointMessage(session.Snapshot(), "start", kStart));
+    const uint8_t garbage[] = {1, 2, 3};
+    log.Publish(channels.checkpoint, garbage, sizeof(garbage));
+    log.Publish(channels.checkpoint, refused);
+    log.Close();
+  };
+  write(false);
+  const std::string error = FindResumePoint(path, Channels::kDefaultPrefix).error;
+  EXPECT_NE(
+      error.find(
+          "; 2 CHECKPOINT(s) refused, the last: checkpoint at step 0: substeps: 65536; allowed 1 .. 4096"),
+      std::string::npos)
+      << error;
+  write(true);
+  const ResumePoint point = FindResumePoint(path, Channels::kDefaultPrefix);
+  ASSERT_EQ(point.error, "");
+  EXPECT_EQ(point.reason, "start");
+  EXPECT_EQ(point.checkpoints_refused, 2);
+  EXPECT_NE(
+      DescribeResume(point).find("; 2 later CHECKPOINT(s) refused, the last: checkpoint at step 0: substeps"),
+      std::string::npos)
+      << DescribeResume(point);
+  std::remove(path.c_str());
 }
 
 TEST(ResumePoint, NothingToResumeFromIsSaid) {
