@@ -72,6 +72,12 @@ void ReadWind(const toml::table& table, const std::string& source, Scene* scene)
                        "; known: velocity, gust, ramp_time");
     }
   }
+  // Checked as a WIND command is, once the table is read; the error names the line of the key
+  // its field is ("velocity.x: ..." => wind.velocity's), as the other errors of a file do.
+  const std::string problem = ParameterTable::CheckWind(scene->wind);
+  if (problem.empty()) return;
+  const toml::node* key = table.get(problem.substr(0, problem.find_first_of(".:")));
+  throw SceneError(Where(source, key != nullptr ? *key : table) + "wind." + problem);
 }
 
 Eigen::Vector3d Vector(const toml::node& node, const std::string& what, const std::string& source) {
@@ -291,11 +297,9 @@ Scene ParseScene(const std::string& text, const std::string& source) {
           "'; known: name, description, seed, settle, [parameters], [wind], [camera], [timeline]");
     }
   }
-  for (const std::string& problem :
-       {ParameterTable::CheckConsistency(scene), ParameterTable::CheckWind(scene.wind)}) {
-    if (!problem.empty()) throw SceneError(source + ": " + problem);
-  }
-  const std::string problem = CheckTimeline(scene.timeline, scene);
+  std::string problem = ParameterTable::CheckConsistency(scene);
+  if (!problem.empty()) throw SceneError(source + ": " + problem);
+  problem = CheckTimeline(scene.timeline, scene);
   if (!problem.empty()) throw SceneError(source + ": timeline." + problem);
   return scene;
 }
