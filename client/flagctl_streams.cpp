@@ -9,6 +9,7 @@
 #include "client/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
 #include "client/flagctl_link.hpp"
+#include "client/frame_output.hpp"
 #include "client/log_recorder.hpp"
 #include "client/picture_file.hpp"
 #include "client/printing.hpp"
@@ -91,6 +92,11 @@ int Snapshot(const Globals& globals, const std::string& path) {
   if (!format) {  // before anything is asked of the server
     std::fprintf(stderr, "flagctl snapshot: -o %s\n", problem.c_str());
     return kUsage;
+  }
+  problem = CheckOutputFile(path);  // as export does: a picture that cannot be written asks nothing
+  if (!problem.empty()) {
+    std::fprintf(stderr, "flagctl snapshot: %s\n", problem.c_str());
+    return kFailed;
   }
   Link link(globals);
   CommandClient client(link.bus, link.channels, std::min(globals.timeout, kRefreshAnswerWait), link.signer);

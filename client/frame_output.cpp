@@ -40,6 +40,16 @@ class PngDirectory final : public FrameOutput {
   int64_t frames_ = 0;
 };
 
+/// "" if `directory`, where `path` goes, is a directory we may write in; else what stands in the way.
+std::string CheckDirectoryToWriteIn(const std::string& path, const std::filesystem::path& directory) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(directory, error))
+    return "cannot write " + path + ": there is no directory " + directory.string();
+  if (access(directory.c_str(), W_OK) != 0)
+    return "cannot write " + path + ": " + directory.string() + ": " + std::strerror(errno);
+  return "";
+}
+
 }  // namespace
 
 std::optional<OutputKind> OutputKindOf(const std::string& path, std::string* error) {
@@ -52,26 +62,30 @@ std::optional<OutputKind> OutputKindOf(const std::string& path, std::string* err
   return std::nullopt;
 }
 
-// path => the directory it goes in (for a PNG directory the nearest that exists) => writable?
-std::string CheckOutputPath(OutputKind kind, const std::string& path) {
+std::string CheckOutputFile(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code error;
-  if (kind != OutputKind::kPngDirectory && fs::is_directory(path, error)) {
-    return "cannot write " + path + ": it is a directory";
-  }
-  fs::path directory = kind == OutputKind::kPngDirectory ? fs::path(path) : fs::path(path).parent_path();
-  if (directory.empty()) directory = ".";
-  while (kind == OutputKind::kPngDirectory && !fs::exists(directory, error)) {  // made when written
+  if (fs::is_directory(path, error)) return "cannot write " + path + ": it is a directory";
+  const fs::path directory = fs::path(path).parent_path();
+  const std::string problem = CheckDirectoryToWriteIn(path, directory.empty() ? fs::path(".") : directory);
+  if (!problem.empty()) return problem;
+  if (fs::exists(path, error) && access(path.c_str(), W_OK) != 0)
+    return "cannot write " + path + ": " + std::strerror(errno);
+  return "";
+}
+
+// A video: a file. A PNG directory is made when written: the nearest directory that exists
+// must take it.
+std::string CheckOutputPath(OutputKind kind, const std::string& path) {
+  if (kind != OutputKind::kPngDirectory) return CheckOutputFile(path);
+  namespace fs = std::filesystem;
+  std::error_code error;
+  fs::path directory = path;
+  while (!fs::exists(directory, error)) {
     const fs::path parent = directory.parent_path();
     directory = parent.empty() ? fs::path(".") : parent;
   }
-  if (!fs::is_directory(directory, error)) {
-    return "cannot write " + path + ": there is no directory " + directory.string();
-  }
-  if (access(directory.c_str(), W_OK) != 0) {
-    return "cannot write " + path + ": " + directory.string() + ": " + std::strerror(errno);
-  }
-  return "";
+  return CheckDirectoryToWriteIn(path, directory);
 }
 
 std::unique_ptr<FrameOutput> MakeFrameOutput(OutputKind kind, const std::string& path, double frame_rate) {

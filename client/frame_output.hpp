@@ -24,6 +24,11 @@ std::optional<OutputKind> OutputKindOf(const std::string& path, std::string* err
 /// is a directory we may write in), else what stands in the way: checked before any work.
 std::string CheckOutputPath(OutputKind kind, const std::string& path);
 
+/// "" if a file can be written at `path` (flagctl snapshot's picture, a video): not a directory,
+/// in a directory that is there and that we may write in, and if it exists, one we may write;
+/// else what stands in the way, with the system's reason.
+std::string CheckOutputFile(const std::string& path);
+
 class FrameOutput {
  public:
   virtual ~FrameOutput() = default;

@@ -2,9 +2,10 @@
 
 #include <jpeglib.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <cstring>
 
 namespace flagsim {
 
@@ -38,11 +39,13 @@ std::string EncodeJpeg(const uint8_t* rgb, int width, int height, int quality) {
 
 std::string WriteJpeg(const std::string& path, int width, int height, const uint8_t* rgb, int quality) {
   const std::string jpeg = EncodeJpeg(rgb, width, height, quality);
-  std::ofstream file(path, std::ios::binary);
-  if (!file) return "cannot open " + path + " for writing";
-  file.write(jpeg.data(), static_cast<std::streamsize>(jpeg.size()));
-  file.close();
-  return file ? "" : "writing " + path + " failed";
+  std::FILE* file = std::fopen(path.c_str(), "wb");  // stdio, for errno's reason
+  if (file == nullptr) return "cannot open " + path + " for writing: " + std::strerror(errno);
+  const bool written =
+      std::fwrite(jpeg.data(), 1, jpeg.size(), file) == jpeg.size() && std::fflush(file) == 0;
+  const std::string reason = written ? "" : std::strerror(errno);
+  std::fclose(file);
+  return written ? "" : "writing " + path + " failed: " + reason;
 }
 
 }  // namespace flagsim

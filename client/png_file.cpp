@@ -2,7 +2,9 @@
 
 #include <png.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
@@ -18,7 +20,7 @@ using File = std::unique_ptr<FILE, FileCloser>;
 
 std::string WritePng(const std::string& path, int width, int height, const uint8_t* rgb) {
   File file(std::fopen(path.c_str(), "wb"));
-  if (!file) return "cannot open " + path + " for writing";
+  if (!file) return "cannot open " + path + " for writing: " + std::strerror(errno);
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!info) {
@@ -36,7 +38,7 @@ std::string WritePng(const std::string& path, int width, int height, const uint8
   for (int y = 0; y < height; ++y) png_write_row(png, const_cast<uint8_t*>(rgb + size_t(y) * width * 3));
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  return std::fflush(file.get()) == 0 ? "" : "writing " + path + " failed";
+  return std::fflush(file.get()) == 0 ? "" : "writing " + path + " failed: " + std::strerror(errno);
 }
 
 std::string PngFramePath(const std::string& directory, int64_t index) {

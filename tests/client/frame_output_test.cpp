@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,25 @@ TEST(CheckOutputPath, TheDirectoryMustBeThereToWriteIn) {
   EXPECT_EQ(CheckOutputPath(OutputKind::kMp4, "/nonexistent/out.mp4"),
             "cannot write /nonexistent/out.mp4: there is no directory /nonexistent");
   EXPECT_EQ(CheckOutputPath(OutputKind::kMp4, scratch), "cannot write " + scratch + ": it is a directory");
+}
+
+// flagctl snapshot's picture, checked before the server is asked: the file's directory must be
+// there, and the file, if it is there, one we may write.
+TEST(CheckOutputFile, ThePictureMustBeOneWeMayWrite) {
+  const std::string scratch = ::testing::TempDir();
+  EXPECT_EQ(CheckOutputFile(scratch + "/flag.png"), "");
+  EXPECT_EQ(CheckOutputFile("flag.jpg"), "");  // here
+  EXPECT_EQ(CheckOutputFile("/nonexistent/flag.png"),
+            "cannot write /nonexistent/flag.png: there is no directory /nonexistent");
+  EXPECT_EQ(CheckOutputFile(scratch), "cannot write " + scratch + ": it is a directory");
+  const std::string file = scratch + "/" + std::to_string(getpid()) + "_flag.png";
+  std::ofstream(file) << "x";
+  EXPECT_EQ(CheckOutputFile(file + "/flag.png"),
+            "cannot write " + file + "/flag.png: there is no directory " + file);
+  std::filesystem::permissions(file, std::filesystem::perms::owner_read);
+  if (geteuid() != 0)  // the superuser may write any file
+    EXPECT_EQ(CheckOutputFile(file), "cannot write " + file + ": Permission denied");
+  std::filesystem::remove(file);
 }
 
 }  // namespace

@@ -71,10 +71,12 @@ TEST(ReadPng, APictureOverTheSizeLimitIsRefusedByItsHeader) {
   std::remove(png.c_str());
 }
 
-TEST(WritePicture, AFileThatCannotBeWrittenIsNamed) {
+TEST(WritePicture, AFileThatCannotBeWrittenIsNamedWithTheReason) {
   const std::vector<uint8_t> rgb(4 * 4 * 3, 0);
-  const std::string problem = WritePicture("/nonexistent/frame.jpg", PictureFormat::kJpeg, 4, 4, rgb.data());
-  EXPECT_NE(problem.find("/nonexistent/frame.jpg"), std::string::npos) << problem;
+  EXPECT_EQ(WritePicture("/nonexistent/frame.jpg", PictureFormat::kJpeg, 4, 4, rgb.data()),
+            "cannot open /nonexistent/frame.jpg for writing: No such file or directory");
+  EXPECT_EQ(WritePicture("/nonexistent/frame.png", PictureFormat::kPng, 4, 4, rgb.data()),
+            "cannot open /nonexistent/frame.png for writing: No such file or directory");
 }
 
 }  // namespace

@@ -62,6 +62,10 @@ echo "-- files"
 expect 1 "record into a directory that is not there fails" "$flagctl" --prefix NOBODY_ --timeout 0.5 \
   record -o /nonexistent/x.lcmlog
 contains "/nonexistent/x.lcmlog" "  naming the file"
+expect 1 "snapshot into a directory that is not there fails before asking" "$flagctl" --prefix NOBODY_ \
+  --timeout 30 snapshot -o /nonexistent/x.png
+contains "flagctl snapshot: cannot write /nonexistent/x.png: there is no directory /nonexistent" \
+  "  naming the file and why"
 expect 1 "export of a log that is not there fails" "$flagctl" export /nonexistent.lcmlog -o "$work/out"
 contains "cannot read /nonexistent.lcmlog" "  naming the log"
 
