@@ -83,6 +83,10 @@ class CommandIntake {
   /// True once after tables-only REFRESH requests (PARAMS, TIMELINE and STATUS are due).
   bool TakeTablesRequest() { return std::exchange(tables_request_, false); }
 
+  /// Undecodable bytes heard on `channel` (a command channel, or another that the server reads:
+  /// STATUS): counted in STATUS (messages_dropped), the latest logged at most once a second.
+  void Drop(const std::string& channel, const std::string& reason);
+
  private:
   template <class Command>
   void Subscribe(const std::string& channel, std::string (CommandIntake::*apply)(const Command&));
@@ -96,7 +100,6 @@ class CommandIntake {
   std::string ApplyCamera(const camera_command_t& command);
   std::string ApplyKeyframe(const keyframe_command_t& command);
 
-  void Drop(const std::string& channel, const std::string& reason);
   void Refuse(const std::string& channel, const std::string& client_id, int64_t sequence,
               const CommandAuthenticator::Verdict& verdict);
   void Answer(ack_t ack, int64_t recoveries_before);

@@ -34,7 +34,11 @@ Server::Server(Bus& bus, const Channels& channels, Start start, const ServerOpti
       session_(start.resumed ? Session(*start.resumed) : Session(*start.scene)),
       resumed_(start.resumed != nullptr),
       start_time_(session_.simulation().state().time),
-      presence_(bus, channels, options.clock),
+      // An undecodable STATUS is counted and logged as undecodable commands are (the lambda runs
+      // only once the bus is handled, after intake_ is made).
+      presence_(
+          bus, channels, options.clock,
+          [this](const std::string& channel, const std::string& reason) { intake_.Drop(channel, reason); }),
       inputs_(options.inputs_log.empty()
                   ? nullptr
                   : std::make_unique<InputsLog>(bus, options.inputs_log,

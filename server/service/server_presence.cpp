@@ -19,8 +19,13 @@ int64_t NewServerId() {
 
 }  // namespace
 
-ServerPresence::ServerPresence(Bus& bus, const Channels& channels, std::function<double()> clock)
-    : clock_(std::move(clock)), prefix_(channels.prefix), id_(NewServerId()) {
+ServerPresence::ServerPresence(Bus& bus, const Channels& channels, std::function<double()> clock,
+                               DropSink dropped)
+    : clock_(std::move(clock)),
+      dropped_(std::move(dropped)),
+      channel_(channels.status),
+      prefix_(channels.prefix),
+      id_(NewServerId()) {
   bus.Subscribe(channels.status,
                 [this](const std::string&, const uint8_t* data, size_t size) { OnStatus(data, size); });
 }
@@ -35,7 +40,11 @@ int ServerPresence::others() const {
 void ServerPresence::OnStatus(const uint8_t* data, size_t size) {
   std::string error;
   const auto status = wire::CheckedDecode<status_t>(data, size, 64 * 1024, &error);
-  if (!status || status->server_id == id_ || status->server_id == 0) return;  // ours, or not a server's
+  if (!status) {
+    if (dropped_) dropped_(channel_, error);
+    return;
+  }
+  if (status->server_id == id_ || status->server_id == 0) return;  // ours, or not a server's
   const double now = clock_();
   for (auto it = heard_.begin(); it != heard_.end();) {  // forget those gone quiet
     it = now - it->second > kForgetAfter ? heard_.erase(it) : std::next(it);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <string>
 
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
@@ -21,8 +22,13 @@ class ServerPresence {
   static constexpr double kForgetAfter = 3.0;   ///< s without a server's STATUS: it has gone
   static constexpr size_t kMaxRemembered = 64;  ///< ids kept, so a flood of forged ones is bounded
 
-  /// Draws this server's id and listens on `channels.status`. `clock` gives monotonic seconds.
-  ServerPresence(Bus& bus, const Channels& channels, std::function<double()> clock = MonotonicSeconds);
+  /// What becomes of a STATUS that does not decode: (channel, why) to be counted and logged.
+  using DropSink = std::function<void(const std::string& channel, const std::string& reason)>;
+
+  /// Draws this server's id and listens on `channels.status`. `clock` gives monotonic seconds;
+  /// undecodable STATUS messages go to `dropped` (none: ignored).
+  ServerPresence(Bus& bus, const Channels& channels, std::function<double()> clock = MonotonicSeconds,
+                 DropSink dropped = nullptr);
 
   /// Random, positive, never 0 (0 marks a message no live server published: a render).
   int64_t id() const { return id_; }
@@ -33,6 +39,8 @@ class ServerPresence {
   void OnStatus(const uint8_t* data, size_t size);
 
   std::function<double()> clock_;
+  DropSink dropped_;
+  std::string channel_;  ///< STATUS, with the prefix
   std::string prefix_;
   int64_t id_;
   std::map<int64_t, double> heard_;  ///< another server's id => when its STATUS last came

@@ -10,7 +10,7 @@ struct ServerStats {
   // Since the server started.
   int64_t commands_accepted = 0;  ///< valid commands applied
   int64_t commands_rejected = 0;  ///< decoded but invalid: answered with a reason
-  int64_t messages_dropped = 0;   ///< undecodable bytes on a command channel: no answer possible
+  int64_t messages_dropped = 0;   ///< undecodable bytes on a command channel or STATUS: no answer possible
   /// Commands refused by their signature, by CommandAuthenticator::Refusal (index 0 unused).
   std::array<int64_t, 6> commands_refused{};
   int64_t frames_skipped = 0;     ///< frames due but not drawn: the publisher or the loop was behind

@@ -59,11 +59,21 @@ TEST_F(ServerPresenceTest, AnotherServersStatusCountsUntilItGoesQuiet) {
   EXPECT_EQ(presence_.others(), 0);
 }
 
-TEST_F(ServerPresenceTest, GarbageOnStatusIsIgnored) {
+// Garbage on STATUS is no other server, and a server counts it as dropped (STATUS
+// messages_dropped), as it counts undecodable commands.
+TEST(ServerPresence, GarbageOnStatusIsCountedAsDroppedAndIgnored) {
+  Bus bus("memq://");
+  const Channels channels;
+  testing::SimulatedClock clock;
+  Server server(bus, channels, Scene{}, clock.ServerOnIt());
+  clock.Step(server);
+  const int64_t dropped_before = server.stats().messages_dropped;
   const std::vector<uint8_t> garbage = {1, 2, 3, 4, 5, 6, 7, 8, 9};
-  bus_.Publish(channels_.status, garbage.data(), garbage.size());
-  bus_.HandleAll();
-  EXPECT_EQ(presence_.others(), 0);
+  bus.Publish(channels.status, garbage.data(), garbage.size());
+  bus.Publish(channels.status, garbage.data(), 3);
+  clock.Step(server);
+  EXPECT_EQ(server.stats().messages_dropped, dropped_before + 2);
+  EXPECT_EQ(server.presence().others(), 0);
 }
 
 TEST_F(ServerPresenceTest, AFloodOfForgedIdsIsBounded) {
