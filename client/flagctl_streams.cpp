@@ -106,8 +106,9 @@ int Snapshot(const Globals& globals, const std::string& path) {
   // The whole frame is the assembler's image once complete: the bus is not handled after that.
   int64_t frame_id = -1;
   double completed = 0;  // s, monotonic: when the whole frame was there (before the PNG is written)
+  int64_t invalid = 0;   // undecodable TILE and FRAME messages: ignored, and said
   SubscribeDecoded<tile_t>(
-      link.bus, link.channels.tile, [&](const tile_t& tile) { assembler.AddTile(tile); }, nullptr, 10000);
+      link.bus, link.channels.tile, [&](const tile_t& tile) { assembler.AddTile(tile); }, &invalid, 10000);
   SubscribeDecoded<frame_t>(
       link.bus, link.channels.frame,
       [&](const frame_t& manifest) {
@@ -120,7 +121,7 @@ int Snapshot(const Globals& globals, const std::string& path) {
         complete = whole;
         keyframe_incomplete |= manifest.keyframe && !whole;
       },
-      nullptr, 1000);
+      &invalid, 1000);
   const double start = MonotonicSeconds(), deadline = start + globals.timeout;
   bool answered = false;
   while (!complete && MonotonicSeconds() < deadline) {
@@ -133,6 +134,10 @@ int Snapshot(const Globals& globals, const std::string& path) {
     const double wait =
         std::min(deadline - MonotonicSeconds(), answered ? globals.timeout : kRefreshAnswerWait);
     HandleUntil(link.bus, wait, [&] { return complete || keyframe_incomplete; });
+  }
+  if (invalid > 0) {
+    std::fprintf(stderr, "flagctl snapshot: %lld undecodable TILE or FRAME message(s) ignored\n",
+                 static_cast<long long>(invalid));
   }
   if (!complete) return link.NoAnswer("complete frame");
   const int width = assembler.width(), height = assembler.height();

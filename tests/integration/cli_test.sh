@@ -69,6 +69,20 @@ contains "flagctl snapshot: cannot write /nonexistent/x.png: there is no directo
 expect 1 "export of a log that is not there fails" "$flagctl" export /nonexistent.lcmlog -o "$work/out"
 contains "cannot read /nonexistent.lcmlog" "  naming the log"
 
+# Garbage on TILE and FRAME, and no server: snapshot waits its --timeout for a frame, then says
+# how much it ignored (the spray goes on until snapshot has ended).
+"$flagctl" --prefix GARBAGE_ --timeout 2 snapshot -o "$work/garbage.png" >"$work/garbage.out" 2>&1 &
+snapshot=$!
+while kill -0 $snapshot 2>/dev/null; do
+  "$build/tests/lcm_spray" "$LCM_DEFAULT_URL" 4 GARBAGE_TILE GARBAGE_FRAME >/dev/null
+done
+code=0
+wait $snapshot || code=$?
+if [[ $code == 4 ]] && grep -Eq "flagctl snapshot: [1-9][0-9]* undecodable TILE or FRAME message\(s\) ignored" \
+  "$work/garbage.out"; then
+  pass "snapshot counts the TILE and FRAME messages it could not decode (exit $code)"
+else fail "snapshot on garbage: exit $code" "$work/garbage.out"; fi
+
 echo "-- flagd"
 expect 2 "flagd render refuses a directory as the scene" "$flagd" render --scene "$scenes" --duration 0.1 \
   -o "$work/dir.lcmlog"
