@@ -46,6 +46,12 @@ contains "--prefix: 'A B' is not a channel prefix" "  that names the prefix"
 expect 2 "serve --listen with a port that is not all digits is a usage error" "$flagctl" --prefix NOBODY_ \
   serve --listen 127.0.0.1:80x
 contains "the port '80x' is not one; allowed 0 .. 65535 in digits" "  that names the port and what is allowed"
+expect 2 "watch --duration -1 is a usage error" "$flagctl" --prefix NOBODY_ watch --duration -1
+contains "--duration: -1 is out of range; allowed 0 or more" "  with the bound as typed"
+expect 2 "record --duration -1 is a usage error" "$flagctl" --prefix NOBODY_ record -o "$work/never.lcmlog" \
+  --duration -1
+contains "--duration: -1 is out of range; allowed 0 or more" "  with the bound as typed"
+if [[ ! -e $work/never.lcmlog ]]; then pass "  and writes no log"; else fail "  a log was written"; fi
 expect 0 "camera rotate-x --help" "$flagctl" camera rotate-x --help
 if [[ $(head -n 1 "$work/out") == "turn the scene about the x axis through the target" ]]; then
   pass "  says first what the move does"

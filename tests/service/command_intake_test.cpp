@@ -300,6 +300,44 @@ TEST_F(CommandIntakeTest, RefreshRequestsAreAcknowledged) {
   EXPECT_EQ(client_.Send(channels_.refresh, refresh_request_t{}).result, CommandOutcome::kAccepted);
 }
 
+// The request id is a sequence, 0 and up: a negative one is rejected and asks for nothing (no
+// keyframe, no checkpoint).
+TEST_F(CommandIntakeTest, ARefreshWithANegativeSequenceIsRejected) {
+  std::vector<ack_t> answers;
+  int checkpoints = 0;
+  bus_.Subscribe(channels_.ack, [&answers](const std::string&, const uint8_t* data, size_t size) {
+    std::string error;
+    if (auto ack = wire::CheckedDecode<ack_t>(data, size, 1 << 16, &error)) answers.push_back(*ack);
+  });
+  bus_.Subscribe(channels_.checkpoint, [&](const std::string&, const uint8_t*, size_t) { ++checkpoints; });
+  clock_.Step(server_);  // the start's checkpoint
+  checkpoints = 0;
+  refresh_request_t request{};
+  request.client_id = "viewer";
+  request.sequence = -1;
+  bus_.Publish(channels_.refresh, request);
+  for (int step = 0; step < 8; ++step) clock_.Step(server_);
+  ASSERT_EQ(answers.size(), 1u);
+  EXPECT_FALSE(answers[0].accepted);
+  EXPECT_EQ(answers[0].reason, "sequence: -1; allowed 0 and up");
+  EXPECT_EQ(checkpoints, 0);
+  EXPECT_EQ(stats().commands_rejected, 1);
+}
+
+// At most 64 assignments in one PARAM, however valid each is; the whole is refused.
+TEST_F(CommandIntakeTest, AParamOfMoreThan64AssignmentsIsRejected) {
+  const auto before = Values();
+  const size_t most = Session::kMaxAssignments;
+  CommandOutcome outcome =
+      SetParams(std::vector<std::string>(most + 1, "damping"), std::vector<std::string>(most + 1, "0.1"));
+  EXPECT_EQ(outcome.result, CommandOutcome::kRejected);
+  EXPECT_EQ(outcome.reason, "num_assignments: 65 is out of range; allowed 0 .. 64");
+  EXPECT_EQ(Values(), before);
+  outcome = SetParams(std::vector<std::string>(most, "damping"), std::vector<std::string>(most, "0.1"));
+  EXPECT_EQ(outcome.result, CommandOutcome::kAccepted) << outcome.reason;
+  EXPECT_EQ(scene().sim.forces.damping, 0.1);
+}
+
 keyframe_command_t KeyframeCommand(int8_t operation, double time = 0) {
   keyframe_command_t command{};
   command.operation = operation;

@@ -368,6 +368,34 @@ TEST_F(GatewayTest, ClientsMayPublishCommandsOnTheCommandTopics) {
             std::string::npos);
 }
 
+// A client may advertise at most 32 channels to publish on; the 33rd is refused with the limit,
+// and those it has go on working.
+TEST_F(GatewayTest, AClientMayAdvertiseOnlySoManyChannels) {
+  json channels = json::array();
+  for (uint32_t id = 1; id <= ClientProtocol::kMaxClientChannels + 1; ++id)
+    channels.push_back({{"id", id}, {"topic", "/flag/camera"}, {"encoding", "json"}, {"schemaName", "x"}});
+  client_.Send({{"op", "advertise"}, {"channels", channels}});
+  client_.Read();
+  const std::vector<json> statuses = client_.Texts("status");
+  ASSERT_EQ(statuses.size(), 1u);
+  EXPECT_EQ(statuses[0]["message"], "advertise: at most 32 client channels");
+  EXPECT_EQ(statuses[0]["level"], ClientProtocol::kError);
+  client_.Send({{"op", "advertise"}, {"channels", {channels[0]}}});  // one it has: advertised again
+  client_.Read();
+  EXPECT_EQ(client_.Texts("status").size(), 1u);
+  client_.Subscribe(kAcksChannel);
+  std::string frame(1, char(kClientMessageData));
+  AppendU32(&frame, ClientProtocol::kMaxClientChannels);  // the last one taken
+  client_.protocol().OnBinary(frame + R"({"operation": "orbit", "degrees": 5, "degrees2": 0})");
+  ASSERT_TRUE(RunUntil([&] { return HasData(kAcksChannel); }));
+  EXPECT_TRUE(client_.LatestJson(kAcksChannel)["accepted"]) << client_.LatestJson(kAcksChannel);
+  frame.resize(1);
+  AppendU32(&frame, ClientProtocol::kMaxClientChannels + 1);  // the one refused
+  client_.protocol().OnBinary(frame + R"({"operation": "orbit", "degrees": 5, "degrees2": 0})");
+  client_.Read();
+  EXPECT_EQ(client_.Texts("status").back()["message"], "Client Message Data on channel 33, never advertised");
+}
+
 TEST_F(GatewayTest, HostileMessagesAreAnsweredAndLeaveTheGatewayServing) {
   client_.Read();
   const size_t before = client_.texts.size();
