@@ -174,8 +174,10 @@ ChaosCommand ChaosCommands::Camera(bool valid) {
         camera.operation = camera_command_t::SET_IMAGE_SIZE, camera.width = 9000, camera.height = 100;
         break;
       case 2:
+        // Out of range whatever the scene's turn (under the ground is frame-dependent: a turned
+        // scene may lift the same vector above it, so that case belongs to the valid moves' luck).
         camera.operation = camera_command_t::SET_EYE;
-        camera.vector[0] = 1, camera.vector[1] = -1, camera.vector[2] = 3;  // under the ground
+        camera.vector[0] = 1, camera.vector[1] = -2000, camera.vector[2] = 3;
         break;
       case 3:
         camera.operation = camera_command_t::ORBIT, camera.angle = kNaN;
