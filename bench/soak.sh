@@ -7,7 +7,8 @@
 #         parameters, camera moves, keyframe edits, size changes, resets, keyframe requests and
 #         questions, one at a time, each answer awaited) and flagctl record taking the whole bus
 # Every 5 s it samples each process's resident memory and open file descriptors. At the end:
-# memory after the warm-up (a tenth of each part, at least 30 s) against the end, descriptors,
+# memory after the warm-up (a tenth of each part, at least 30 s) against the end (medians of
+# windows a warm-up long) and its trend, descriptors,
 # commands sent and answered, whether every process lived and stopped cleanly, the real-time
 # factor the clients saw, and flagd replay of both recordings (every hash equal, bit for bit).
 #   bench/soak.sh [BUILD_DIR] [REAL_SECONDS=600] [FAST_SIMULATED_SECONDS=3600]
@@ -42,15 +43,30 @@ sample() {
 }
 echo "part,process,seconds,resident_kb,fds" >"$out/samples.csv"
 
-# growth PART NAME WARMUP: the process's memory and descriptors after the warm-up and at the end.
+# growth PART NAME WARMUP: the process's resident memory after the warm-up against the end, each
+# the median of a window as long as the warm-up (a window, not one sample: the chaos client's image
+# sizes and grids move memory up and down by megabytes for seconds at a time), the peak, the
+# least-squares trend after the warm-up (a leak shows there whatever the windows), and descriptors.
 growth() {
   awk -F, -v part="$1" -v name="$2" -v warm="$3" '
-    $1 == part && $2 == name && $3 >= warm && !seen { seen = 1; rss0 = $4; fd0 = $5; t0 = $3 }
-    $1 == part && $2 == name { rss1 = $4; fd1 = $5; t1 = $3; peak = ($4 > peak ? $4 : peak) }
+    function median(list, n,    i, j, v) {
+      for (i = 2; i <= n; ++i) { v = list[i]; for (j = i - 1; j >= 1 && list[j] > v; --j) list[j + 1] = list[j]; list[j + 1] = v }
+      return n % 2 ? list[(n + 1) / 2] : (list[n / 2] + list[n / 2 + 1]) / 2
+    }
+    $1 == part && $2 == name && $3 >= warm { ++n; t[n] = $3; rss[n] = $4 / 1024; fd[n] = $5 }
     END {
-      if (!seen) { printf "  %-9s no samples after the warm-up\n", name; exit }
-      printf "  %-9s resident %7.1f MB at %4d s, %7.1f MB at %4d s (%+.1f %%), peak %.1f MB; fds %d -> %d\n",
-             name, rss0 / 1024, t0, rss1 / 1024, t1, 100 * (rss1 - rss0) / rss0, peak / 1024, fd0, fd1
+      if (n < 2) { printf "  %-9s too few samples after the warm-up\n", name; exit }
+      peak = 0; fdmax = 0; st = 0; sr = 0; stt = 0; str = 0
+      for (i = 1; i <= n; ++i) {
+        if (rss[i] > peak) peak = rss[i]; if (fd[i] > fdmax) fdmax = fd[i]
+        st += t[i]; sr += rss[i]; stt += t[i] * t[i]; str += t[i] * rss[i]
+        if (t[i] < t[1] + warm) first[++nf] = rss[i]
+        if (t[i] > t[n] - warm) last[++nl] = rss[i]
+      }
+      slope = (n * str - st * sr) / (n * stt - st * st)  # MB per s
+      m0 = median(first, nf); m1 = median(last, nl)
+      printf "  %-9s resident %6.1f MB after the warm-up (%d-%d s), %6.1f MB at the end (%d-%d s): %+.1f %%; peak %.1f MB; trend %+.1f MB/h; fds %d -> %d (at most %d)\n",
+             name, m0, t[1], t[1] + warm, m1, t[n] - warm, t[n], 100 * (m1 - m0) / m0, peak, 3600 * slope, fd[1], fd[n], fdmax
     }' "$out/samples.csv" | tee -a "$summary"
 }
 

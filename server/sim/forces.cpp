@@ -141,13 +141,23 @@ void GatherKernel(const GatherSources<Real>& sources, const Real* __restrict mas
 // node reads its springs at fixed offsets (the far end of a spring from a at a - offset) and its
 // six faces at i, i - 1, i - cols and i - cols - 1 with no bounds checks: a missing one adds 0.
 
+// Compared in place: Evaluate asks this every substep, and a vector made to compare would be a
+// heap allocation each time.
+template <typename Real>
+bool ForceEvaluator<Real>::LaidOutFor(const ClothModel<Real>& model) const {
+  if (layout_.size() != 2 + 2 * model.families.size() || layout_[0] != model.cols || layout_[1] != model.rows)
+    return false;
+  for (size_t f = 0; f < model.families.size(); ++f)
+    if (layout_[2 + 2 * f] != model.families[f].dr || layout_[3 + 2 * f] != model.families[f].dc) return false;
+  return true;
+}
+
 template <typename Real>
 void ForceEvaluator<Real>::Resize(const ClothModel<Real>& model) {
   if (model.families.size() > kMaxSpringFamilies) throw std::invalid_argument("too many spring families");
-  std::vector<int> layout = {model.cols, model.rows};
-  for (const SpringFamily<Real>& family : model.families) layout.insert(layout.end(), {family.dr, family.dc});
-  if (layout == layout_) return;
-  layout_ = std::move(layout);
+  if (LaidOutFor(model)) return;
+  layout_ = {model.cols, model.rows};
+  for (const SpringFamily<Real>& family : model.families) layout_.insert(layout_.end(), {family.dr, family.dc});
   // Fresh zeros: slots a new layout never writes must not keep an old layout's forces.
   const size_t slots = Padding(model.cols) + model.num_nodes();
   spring_.assign(model.families.size(), ZeroForces<Real>(slots));

@@ -80,6 +80,7 @@ class ForceEvaluator {
                 ForceTerms terms = ForceTerms::kAll, const std::function<void(int)>& after_row = {});
 
  private:
+  bool LaidOutFor(const ClothModel<Real>& model) const;  ///< whether the scratch fits the model
   void Resize(const ClothModel<Real>& model);
   void SampleWind(const ClothModel<Real>& model, const WindField& wind, double t);
   void SpringBand(const ClothModel<Real>& model, const ClothState<Real>& state, RowBand band);
