@@ -1,5 +1,5 @@
 # The unit tests' labels beyond `unit`, read by ctest after each executable's list of discovered
-# tests (<executable>_TESTS, from gtest_discover_tests).
+# tests (<executable>_TESTS, from gtest_discover_tests) and the list of executables.
 #   threaded  the modules whose threads meet: the worker pool, the server's pipelined loop, the
 #             clients, the renderer and the gateway (scripts/test.sh --sanitize thread runs these)
 #   long      a long physics scene, over 30 s each under AddressSanitizer (a minute or more of
@@ -22,8 +22,7 @@ set(long_tests
   Simulation.OnlyAChangeOfControlsWakesTheFlag
   Simulation.TheGuardKeepsStableIntegratorsSoundAtTheLargestStep)
 
-foreach(executable parallel_tests sim_tests scene_tests messages_tests service_tests client_tests render_tests
-                   gateway_tests)
+foreach(executable IN LISTS unit_executables)  # every flagsim_test (tests/CMakeLists.txt)
   foreach(test IN LISTS ${executable}_TESTS)
     set(labels unit)
     list(FIND threaded_executables "${executable}" threaded)
