@@ -20,7 +20,8 @@ set(long_tests
   Simulation.AFlagAtRestInCalmAirSleepsAndWindWakesIt
   Simulation.FlagAtRestInStillAirSettles
   Simulation.OnlyAChangeOfControlsWakesTheFlag
-  Simulation.TheGuardKeepsStableIntegratorsSoundAtTheLargestStep)
+  Simulation.TheGuardKeepsStableIntegratorsSoundAtTheLargestStep
+  Bending.TheBreezesCurvatureDoesNotGrowAsTheGridRefines)
 
 foreach(executable IN LISTS unit_executables)  # every flagsim_test (tests/CMakeLists.txt)
   foreach(test IN LISTS ${executable}_TESTS)

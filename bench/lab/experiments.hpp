@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace flagsim::lab {
 
@@ -20,5 +21,17 @@ void Cost(const std::string& csv);
 void Threads(const std::string& csv);
 /// For each preset scene, the cheapest integrator and step whose error stays under a pixel.
 void Cheapest(const std::string& csv);
+
+/// What the shape experiment runs: a scene at several grids, with settings of its own.
+struct ShapeOptions {
+  std::string scene = "breeze";
+  std::vector<std::string> grids = {"32x24", "64x48", "128x96"};
+  std::vector<std::string> settings;  ///< NAME=VALUE, as flagd --set takes them
+  double warmup = 4;                  ///< s before sampling
+  double seconds = 20;                ///< s sampled
+  int batches = 10;
+};
+/// The cloth under grid refinement: shape statistics with confidence intervals at each grid.
+void Shape(const ShapeOptions& options, const std::string& csv);
 
 }  // namespace flagsim::lab

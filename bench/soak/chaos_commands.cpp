@@ -24,7 +24,7 @@ constexpr std::array kRegions = {
     Region{"rows", 3, 36, true},
     Region{"stiffness", 200, 8000},
     Region{"shear_stiffness", 0, 1000},
-    Region{"bend_stiffness", 0, 500},
+    Region{"bending_stiffness", 0, 0.005},
     Region{"damping", 0, 0.5},
     Region{"friction", 0, 0.9},
     Region{"wind_coefficient", 0.2, 3},
@@ -46,7 +46,7 @@ constexpr std::array kIntegrators = {
 constexpr std::array kShadings = {"wireframe", "flat", "gouraud", "phong"};
 /// Parameters a key may set (scene_timeline.hpp), with the part of their range drawn from.
 constexpr std::array kAnimatable = {
-    Region{"stiffness", 500, 6000}, Region{"shear_stiffness", 0, 800}, Region{"bend_stiffness", 0, 400},
+    Region{"stiffness", 500, 6000}, Region{"shear_stiffness", 0, 800}, Region{"bending_stiffness", 0, 0.004},
     Region{"damping", 0, 0.3},      Region{"friction", 0, 0.8},        Region{"wind_coefficient", 0.3, 2.5},
     Region{"gravity", 5, 12},
 };

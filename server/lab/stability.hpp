@@ -24,4 +24,15 @@ inline double HighestFrequency(const sim::SimParams& params) {
   return std::sqrt(TopEigenvalue(params, false));
 }
 
+/// The stiffest mode the flag has in one state: the top eigenvalue of M^-1 K(x), K(x) the
+/// tangent stiffness there (each spring's exact Hessian in the regime it is in, so a compressed
+/// spring is softer, a stretched one stiffer across; plus the bending's B Q), and that mode's
+/// damping rate v^T M^-1/2 C M^-1/2 v on its unit eigenvector v (C the springs' c u u^T at x, the
+/// bending's beta B Q, and friction).
+struct StiffestMode {
+  double omega_squared = 0;  ///< (rad/s)^2
+  double damping_rate = 0;   ///< 1/s
+};
+StiffestMode StiffestModeAt(const sim::SimParams& params, const sim::ClothState<double>& state);
+
 }  // namespace flagsim::lab

@@ -17,7 +17,8 @@ constexpr int kSoundnessInterval = 64;  ///< substeps between checks for a blow-
 }  // namespace
 
 template <typename Real>
-sim::ClothState<Real> RunFixed(const Trial& trial, int substeps) {
+sim::ClothState<Real> RunFixed(const Trial& trial, int substeps,
+                               const std::function<void(const sim::ClothState<Real>&)>& observe) {
   const sim::ClothModel<Real> model = sim::BuildClothModel<Real>(trial.params);
   const sim::WindField wind(trial.wind, trial.seed);
   sim::ForceEvaluator<Real> evaluator;
@@ -28,6 +29,7 @@ sim::ClothState<Real> RunFixed(const Trial& trial, int substeps) {
   for (int i = 0; i < substeps; ++i) {
     integrator->Substep(context, h, &state);
     state.time = (i + 1) * h;  // no drift of the clock from repeated sums
+    if (observe) observe(state);
     if (i % kSoundnessInterval == 0 && !StateIsSound(state)) break;
   }
   return state;
@@ -69,8 +71,10 @@ bool StateIsSound(const sim::ClothState<Real>& state) {
   return true;
 }
 
-template sim::ClothState<float> RunFixed<float>(const Trial&, int);
-template sim::ClothState<double> RunFixed<double>(const Trial&, int);
+template sim::ClothState<float> RunFixed<float>(const Trial&, int,
+                                                const std::function<void(const sim::ClothState<float>&)>&);
+template sim::ClothState<double> RunFixed<double>(const Trial&, int,
+                                                  const std::function<void(const sim::ClothState<double>&)>&);
 template bool StateIsSound<float>(const sim::ClothState<float>&);
 template bool StateIsSound<double>(const sim::ClothState<double>&);
 

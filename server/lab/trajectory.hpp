@@ -21,9 +21,11 @@ struct Trial {
 };
 
 /// The state after trial.horizon seconds from rest, in `substeps` equal substeps of
-/// trial.params.integrator. A run that goes unsound (StateIsSound) stops there.
+/// trial.params.integrator. A run that goes unsound (StateIsSound) stops there. `observe`, if
+/// given, sees the state after every substep.
 template <typename Real>
-sim::ClothState<Real> RunFixed(const Trial& trial, int substeps);
+sim::ClothState<Real> RunFixed(const Trial& trial, int substeps,
+                               const std::function<void(const sim::ClothState<Real>&)>& observe = {});
 
 /// Seconds of this thread's CPU time that `run` takes, the median of `repeats` calls.
 double MedianCpuSeconds(int repeats, const std::function<void()>& run);

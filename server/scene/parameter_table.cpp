@@ -157,8 +157,8 @@ ParameterTable::ParameterTable() {
             "structural stretch modulus of the sheet (springs to row and column neighbours)"),
       Force("shear_stiffness", "N/m", 0, 100000, &ForceCoefficients::shear_stiffness,
             "shear modulus of the sheet (diagonal springs)"),
-      Force("bend_stiffness", "N/m", 0, 100000, &ForceCoefficients::bend_stiffness,
-            "bending modulus of the sheet (springs between nodes two apart)"),
+      Force("bending_stiffness", "N m", 0, 1, &ForceCoefficients::bending_stiffness,
+            "bending stiffness (flexural rigidity) of the sheet, on its curvature"),
       Force("damping", "N s/m", 0, 100, &ForceCoefficients::damping, "damping along every spring"),
       Real("compression", "", 0, 1, &SimParams::compression,
            "compressive stiffness of structural and shear springs as a fraction of their stiffness"),
@@ -225,6 +225,10 @@ const Parameter* ParameterTable::Find(const std::string& name) const {
 
 std::string ParameterTable::Assign(const std::string& name, const std::string& text, Scene* scene) const {
   const Parameter* parameter = Find(name);
+  if (parameter == nullptr && name == "bend_stiffness") {
+    return "bend_stiffness (N/m, springs between nodes two apart) is no longer a parameter: the sheet "
+           "bends by bending_stiffness, in N m, allowed " + Find("bending_stiffness")->AllowedText();
+  }
   if (parameter == nullptr) {
     std::string known;
     for (const Parameter& each : parameters_) known += (known.empty() ? "" : ", ") + each.name;

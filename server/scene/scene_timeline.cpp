@@ -16,7 +16,7 @@ namespace {
 using Limits = TimelineLimits;
 
 /// The parameters the substeps depend on: what the frequency bound reads.
-constexpr const char* kStabilityNames[] = {"stiffness", "shear_stiffness", "bend_stiffness", "damping",
+constexpr const char* kStabilityNames[] = {"stiffness", "shear_stiffness", "bending_stiffness", "damping",
                                            "friction"};
 
 std::string Number(double value) {

@@ -4,7 +4,7 @@
 // passes through (from which the simulation's substeps are chosen).
 //
 // A key sets only animatable parameters: the forces' continuous coefficients (stiffness,
-// shear_stiffness, bend_stiffness, damping, friction, wind_coefficient, gravity), which a step
+// shear_stiffness, bending_stiffness, damping, friction, wind_coefficient, gravity), which a step
 // changes in place. The others are rejected in keys, not stepped: grid and mass changes rebuild
 // the flag at rest, dt and the numerics would change the step under the timeline, and integers,
 // choices and switches have nothing between their values; PARAM sets them.

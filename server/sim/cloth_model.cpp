@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "server/sim/bending.hpp"
 #include "server/sim/rest_imperfection.hpp"
 
 namespace flagsim::sim {
@@ -24,6 +25,31 @@ double AreaShare(int r, int c, int rows, int cols) {
 
 /// Which spring constant a matrix is built from: K from the stiffnesses, C from the dampings.
 enum class SpringMatrix { kStiffness, kDamping };
+
+/// The bending's constant in S: B for K, beta B for C.
+template <typename Real>
+double BendingConstant(const ClothModel<Real>& model, SpringMatrix matrix) {
+  const double stiffness = model.bending_stiffness;
+  return matrix == SpringMatrix::kStiffness ? stiffness : double(model.bending_damping) * stiffness;
+}
+
+/// out += M^-1/2 (constant Q) M^-1/2 v: Q = A sum_j s_j s_j^T over the interior nodes j.
+template <typename Real>
+void AddBendingProduct(const ClothModel<Real>& model, double constant, const std::vector<double>& scale,
+                       const std::vector<Eigen3>& v, std::vector<Eigen3>* out) {
+  if (constant == 0) return;
+  const double area = double(model.dx) * double(model.dy);
+  for (int r = 1; r + 1 < model.rows; ++r) {
+    for (int c = 1; c + 1 < model.cols; ++c) {
+      const BendingStencil s = StencilOf(model, r, c);
+      for (int k = 0; k < 3; ++k) {
+        double curvature = 0;
+        for (int m = 0; m < 5; ++m) curvature += s.weights[m] * scale[s.nodes[m]] * v[s.nodes[m]][k];
+        for (int m = 0; m < 5; ++m) (*out)[s.nodes[m]][k] += scale[s.nodes[m]] * constant * area * s.weights[m] * curvature;
+      }
+    }
+  }
+}
 
 /// (M^-1/2 S M^-1/2) v over the free nodes, S = K or C of the springs at rest: each spring adds
 /// s u u^T (v_a - v_b) to node a and the opposite to node b (u its rest direction, s its
@@ -52,6 +78,27 @@ void ApplyRestMatrix(const ClothModel<Real>& model, SpringMatrix matrix, const s
           (*out)[a][k] += scale[a] * f * u[k];
           (*out)[b][k] -= scale[b] * f * u[k];
         }
+      }
+    }
+  }
+  AddBendingProduct(model, BendingConstant(model, matrix), scale, v, out);
+}
+
+/// Adds the bending's absolute row sums to K's and C's: sum_i' |Q_ii'| <= A sum over interior
+/// j holding i of |s_j(i)| sum_m |s_j(m)|.
+template <typename Real>
+void AddBendingRowSums(const ClothModel<Real>& model, std::vector<double>* stiffness_sum,
+                       std::vector<double>* damping_sum) {
+  const double area = double(model.dx) * double(model.dy);
+  for (int r = 1; r + 1 < model.rows; ++r) {
+    for (int c = 1; c + 1 < model.cols; ++c) {
+      const BendingStencil s = StencilOf(model, r, c);
+      double total = 0;
+      for (double weight : s.weights) total += std::abs(weight);
+      for (int m = 0; m < 5; ++m) {
+        const double row = area * std::abs(s.weights[m]) * total;
+        (*stiffness_sum)[s.nodes[m]] += BendingConstant(model, SpringMatrix::kStiffness) * row;
+        (*damping_sum)[s.nodes[m]] += BendingConstant(model, SpringMatrix::kDamping) * row;
       }
     }
   }
@@ -93,30 +140,26 @@ double PowerIterationEigenvalue(const ClothModel<Real>& model, SpringMatrix matr
   return estimate;
 }
 
-/// The compressed spring's stiffness as a fraction of the stretched one's (Choi and Ko 2002,
-/// "Stable but responsive cloth": cloth resists compression far less than stretch, and buckles).
-/// Bend springs keep their stiffness: they are the sheet's bending model, and a bending sheet
-/// shortens them, so softening them in compression would scale its bending stiffness instead.
-double CompressionFraction(const SimParams& params, SpringKind kind) {
-  return kind == SpringKind::kBend ? 1.0 : params.compression;
-}
-
 }  // namespace
 
 template <typename Real>
-void SetSpringConstants(const SimParams& params, ClothModel<Real>* model) {
+void SetMaterialConstants(const SimParams& params, ClothModel<Real>* model) {
   const double cell_area = double(model->dx) * double(model->dy);
   for (SpringFamily<Real>& family : model->families) {
-    const double modulus = family.kind == SpringKind::kStructural ? params.forces.stiffness
-                           : family.kind == SpringKind::kShear    ? params.forces.shear_stiffness
-                                                                  : params.forces.bend_stiffness;
+    const double modulus =
+        family.kind == SpringKind::kStructural ? params.forces.stiffness : params.forces.shear_stiffness;
     // A spring stands for a strip of sheet dx dy / L wide and L long: k = modulus dx dy / L^2.
+    // Compressed, it keeps `compression` of that (Choi and Ko 2002, "Stable but responsive
+    // cloth": cloth resists compression far less than stretch, and buckles).
     const double L = double(family.rest_length);
     const double scale = cell_area / (L * L);
     family.stiffness = Real(modulus * scale);
-    family.compression_stiffness = Real(CompressionFraction(params, family.kind) * modulus * scale);
+    family.compression_stiffness = Real(params.compression * modulus * scale);
     family.damping = Real(params.forces.damping * scale);
   }
+  model->bending_stiffness = Real(params.forces.bending_stiffness);
+  const double stiffness = params.forces.stiffness;
+  model->bending_damping = Real(stiffness > 0 ? params.forces.damping / stiffness : 0.0);
 }
 
 template <typename Real>
@@ -133,9 +176,8 @@ ClothModel<Real> BuildClothModel(const SimParams& params) {
   const double diagonal = std::hypot(dx, dy);
   model.families = {
       {SpringKind::kStructural, 0, 1, Real(dx), 0, 0},  {SpringKind::kStructural, 1, 0, Real(dy), 0, 0},
-      {SpringKind::kShear, 1, 1, Real(diagonal), 0, 0}, {SpringKind::kShear, 1, -1, Real(diagonal), 0, 0},
-      {SpringKind::kBend, 0, 2, Real(2 * dx), 0, 0},    {SpringKind::kBend, 2, 0, Real(2 * dy), 0, 0}};
-  SetSpringConstants(params, &model);
+      {SpringKind::kShear, 1, 1, Real(diagonal), 0, 0}, {SpringKind::kShear, 1, -1, Real(diagonal), 0, 0}};
+  SetMaterialConstants(params, &model);
 
   const int n = model.num_nodes();
   const double density = params.mass / (params.width * params.height);  // kg/m^2
@@ -165,32 +207,35 @@ double StiffnessDampingRatio(const ClothModel<Real>& model) {
   for (const SpringFamily<Real>& family : model.families) {
     if (family.stiffness > 0) smallest = std::min(smallest, double(family.damping) / family.stiffness);
   }
+  if (model.bending_stiffness > 0) smallest = std::min(smallest, double(model.bending_damping));
   return std::isfinite(smallest) ? smallest : 0.0;
 }
 
 template <typename Real>
 FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double friction) {
-  // Row sums of K and C per node: each spring adds its constant to both of its nodes.
+  // Absolute row sums of K and C per node: a spring adds 2 |k| (diagonal and off-diagonal) to
+  // both of its nodes' rows.
   std::vector<double> stiffness_sum(model.num_nodes(), 0.0), damping_sum(model.num_nodes(), 0.0);
   for (const SpringFamily<Real>& family : model.families) {
     for (int r = 0; r + family.dr < model.rows; ++r) {
       for (int c = family.first_col(); c < family.end_col(model.cols); ++c) {
         const int a = model.index(r, c), b = model.index(r + family.dr, c + family.dc);
-        stiffness_sum[a] += family.stiffness;
-        stiffness_sum[b] += family.stiffness;
-        damping_sum[a] += family.damping;
-        damping_sum[b] += family.damping;
+        stiffness_sum[a] += 2 * family.stiffness;
+        stiffness_sum[b] += 2 * family.stiffness;
+        damping_sum[a] += 2 * family.damping;
+        damping_sum[b] += 2 * family.damping;
       }
     }
   }
+  AddBendingRowSums(model, &stiffness_sum, &damping_sum);
   FrequencyBound bound;
   bound.friction = friction;
   bound.stiffness_damping_ratio = StiffnessDampingRatio(model);
   for (int i = 0; i < model.num_nodes(); ++i) {
     if (model.pinned(i)) continue;
     const double inverse_mass = model.inverse_mass[i];
-    bound.omega_squared = std::max(bound.omega_squared, 2 * stiffness_sum[i] * inverse_mass);
-    bound.damping_rate = std::max(bound.damping_rate, 2 * damping_sum[i] * inverse_mass + friction);
+    bound.omega_squared = std::max(bound.omega_squared, stiffness_sum[i] * inverse_mass);
+    bound.damping_rate = std::max(bound.damping_rate, damping_sum[i] * inverse_mass + friction);
   }
   // Gershgorin's bounds are safe but loose (by about 2x on these grids); the power iteration's
   // estimates, with a margin for what they have not yet converged to, are tighter.
@@ -203,8 +248,8 @@ FrequencyBound EstimateFrequencyBound(const ClothModel<Real>& model, double fric
 
 template ClothModel<float> BuildClothModel<float>(const SimParams&);
 template ClothModel<double> BuildClothModel<double>(const SimParams&);
-template void SetSpringConstants<float>(const SimParams&, ClothModel<float>*);
-template void SetSpringConstants<double>(const SimParams&, ClothModel<double>*);
+template void SetMaterialConstants<float>(const SimParams&, ClothModel<float>*);
+template void SetMaterialConstants<double>(const SimParams&, ClothModel<double>*);
 template FrequencyBound EstimateFrequencyBound<float>(const ClothModel<float>&, double);
 template FrequencyBound EstimateFrequencyBound<double>(const ClothModel<double>&, double);
 template double StiffnessDampingRatio<float>(const ClothModel<float>&);

@@ -19,7 +19,7 @@
 
 namespace flagsim::sim {
 
-enum class SpringKind { kStructural, kShear, kBend };
+enum class SpringKind { kStructural, kShear };
 
 /// All springs of one kind and direction on a grid: node (r, c) to node (r + dr, c + dc),
 /// wherever both exist. A uniform grid gives every spring of a family the same constants, so
@@ -32,8 +32,8 @@ struct SpringFamily {
   Real rest_length = 0;  ///< m
   Real stiffness = 0;    ///< N/m, per spring, stretched (|d| >= L)
   Real damping = 0;      ///< N s/m, per spring
-  /// N/m, per spring, compressed (|d| < L): compression x stiffness for structural and shear
-  /// springs, the stiffness itself for bend springs (Choi and Ko 2002's stretch/compression split).
+  /// N/m, per spring, compressed (|d| < L): compression x stiffness (Choi and Ko 2002's
+  /// stretch/compression split).
   Real compression_stiffness = 0;
 
   int first_col() const { return dc < 0 ? -dc : 0; }  ///< columns whose far node exists
@@ -48,8 +48,13 @@ struct ClothModel {
   Real dy = 0;                       ///< m, rest spacing down columns
   std::array<double, 3> pole_top{};  ///< m, world frame; the pole runs from (0,0,0) to here
 
-  /// Structural (0,1) (1,0); shear (1,1) (1,-1); bend (0,2) (2,0).
+  /// Structural (0,1) (1,0); shear (1,1) (1,-1): the sheet in its plane.
   std::vector<SpringFamily<Real>> families;
+  /// N m: the sheet's bending stiffness B, out of its plane (bending.hpp).
+  Real bending_stiffness = 0;
+  /// s: the bending's damping as a Rayleigh ratio beta, the force -beta B Q v (bending.hpp):
+  /// the structural springs' c / k, so that every mode of the sheet is damped alike.
+  Real bending_damping = 0;
 
   std::vector<Real> mass;          ///< kg per node: the flag's mass shared by area
   std::vector<Real> inverse_mass;  ///< 1/kg per node; 0 for nodes pinned to the pole
@@ -67,17 +72,18 @@ struct ClothModel {
 template <typename Real>
 ClothModel<Real> BuildClothModel(const SimParams& params);
 
-/// Updates the spring constants only (stiffness, compression stiffness, damping): what a
-/// parameter change needs when the grid and masses stay.
+/// Updates the material constants only (the springs' stiffness, compression stiffness and
+/// damping; the bending stiffness): what a parameter change needs when the grid and masses stay.
 template <typename Real>
-void SetSpringConstants(const SimParams& params, ClothModel<Real>* model);
+void SetMaterialConstants(const SimParams& params, ClothModel<Real>* model);
 
 /// Bounds on the grid's highest angular frequencies, for choosing stable explicit steps.
-/// Stiffness: Gershgorin's theorem on M^-1 K (max over nodes of sum_j 2 k_ij / m_i) is safe but
-/// about twice the true value on these grids, so it is tightened to 1.25 times a power-iteration
-/// estimate of the top eigenvalue at rest when that is lower. Damping: the same for M^-1 C, plus
-/// friction. K is built from the stretched stiffnesses: compressed springs are no stiffer
-/// (compression <= 1), so the bound holds in either regime, and so does C >= ratio K below.
+/// Stiffness: Gershgorin's theorem on M^-1 K (max over nodes of the absolute row sum over m_i)
+/// is safe but about twice the true value on these grids, so it is tightened to 1.25 times a
+/// power-iteration estimate of the top eigenvalue at rest when that is lower. K is the springs'
+/// stiffness at rest plus the bending's B Q. Damping: the same for M^-1 C, plus friction. K is
+/// built from the stretched stiffnesses: compressed springs are no stiffer (compression <= 1), so
+/// the bound holds in either regime, and so does C >= ratio K below for the springs' part.
 struct FrequencyBound {
   double omega_squared = 0;  ///< (rad/s)^2, >= the largest eigenvalue of M^-1 K
   double damping_rate = 0;   ///< 1/s, >= the largest eigenvalue of M^-1 C

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/sim/bending.hpp"
 
 namespace flagsim::sim {
 namespace {
@@ -66,13 +67,14 @@ void WindKernel(const Real* __restrict x, const Real* __restrict y, const Real* 
   }
 }
 
-/// The grid's spring families, at most: structural, shear and bend, two directions each.
-constexpr int kMaxSpringFamilies = 6;
-/// Arrays a node's force is summed from: both ends of every family, and six faces.
-constexpr int kGatherSources = 2 * kMaxSpringFamilies + 6;
+/// The grid's spring families, at most: structural and shear, two directions each.
+constexpr int kMaxSpringFamilies = 4;
+/// Arrays a node's force is summed from: both ends of every family, six faces and the bending.
+constexpr int kGatherSources = 2 * kMaxSpringFamilies + 7;
 
 /// Where one grid row's contributions are read: source k holds column c's at [c]. Sources come
-/// in a fixed order: per family, the springs' first ends then their far ends; then six faces.
+/// in a fixed order: per family, the springs' first ends then their far ends; then six faces;
+/// then the bending.
 template <typename Real>
 struct GatherSources {
   const Real* x[kGatherSources];
@@ -80,8 +82,8 @@ struct GatherSources {
   const Real* z[kGatherSources];
 };
 
-/// Zero slots in front of the scratch arrays: the farthest a node reads back (bend springs two
-/// rows up), plus one row's worth of columns either side.
+/// Zero slots in front of the scratch arrays: the farthest a node reads back (a spring or a face
+/// one row up, one column aside), and more than the bending's curvature needs either side.
 int Padding(int cols) { return 2 * cols + 2; }
 
 /// f[start + c] = 0 for c in [first, end).
@@ -114,7 +116,7 @@ void GatherKernel(const GatherSources<Real>& sources, const Real* __restrict mas
     Real sx = -friction * mass[i] * vx[i];
     Real sy = -mass[i] * gravity - friction * mass[i] * vy[i];
     Real sz = -friction * mass[i] * vz[i];
-#pragma GCC unroll 18
+#pragma GCC unroll 15
     for (int k = 0; k < kGatherSources; ++k) {
       if (Subtracted(k)) {
         sx -= sources.x[k][i];
@@ -132,6 +134,12 @@ void GatherKernel(const GatherSources<Real>& sources, const Real* __restrict mas
   }
 }
 
+/// Whether an evaluation of `terms` sums a bending force: asked for, and the sheet has one.
+template <typename Real>
+bool Bends(const ClothModel<Real>& model, ForceTerms terms) {
+  return Includes(terms, ForceTerms::kBending) && model.bending_stiffness > Real(0);
+}
+
 }  // namespace
 
 // Scratch layout. Per-spring forces (per family) and per-face wind shares are stored on the node
@@ -140,6 +148,8 @@ void GatherKernel(const GatherSources<Real>& sources, const Real* __restrict mas
 // column of cells) are never written and stay 0, as do the Padding(cols) slots in front, so a
 // node reads its springs at fixed offsets (the far end of a spring from a at a - offset) and its
 // six faces at i, i - 1, i - cols and i - cols - 1 with no bounds checks: a missing one adds 0.
+// The curvature and the bending force are per node at the same index, with Padding(cols) zero
+// slots after the nodes as well: the bending's Laplacian reads one row either side.
 
 // Compared in place: Evaluate asks this every substep, and a vector made to compare would be a
 // heap allocation each time.
@@ -162,6 +172,7 @@ void ForceEvaluator<Real>::Resize(const ClothModel<Real>& model) {
   const size_t slots = Padding(model.cols) + model.num_nodes();
   spring_.assign(model.families.size(), ZeroForces<Real>(slots));
   upper_ = lower_ = ZeroForces<Real>(slots);
+  curvature_ = bending_ = ZeroForces<Real>(slots + Padding(model.cols));  // padded after the nodes too
   zero_.assign(model.num_nodes(), Real(0));
   column_wind_x_.resize(model.cols - 1);
   column_wind_y_.resize(model.cols - 1);
@@ -243,8 +254,27 @@ void ForceEvaluator<Real>::WindBand(const ClothModel<Real>& model, const SimPara
   }
 }
 
+// The curvature k = L (x + beta v) of the band's nodes, per coordinate.
+template <typename Real>
+void ForceEvaluator<Real>::CurvatureBand(const ClothModel<Real>& model, const ClothState<Real>& state,
+                                         RowBand band) {
+  const int pad = Padding(model.cols);
+  CurvatureRows(model, state.x.data(), state.vx.data(), band.begin, band.end, curvature_.x.data() + pad);
+  CurvatureRows(model, state.y.data(), state.vy.data(), band.begin, band.end, curvature_.y.data() + pad);
+  CurvatureRows(model, state.z.data(), state.vz.data(), band.begin, band.end, curvature_.z.data() + pad);
+}
+
+// The bending force -B A L k of the band's nodes, once every band's curvature is in.
+template <typename Real>
+void ForceEvaluator<Real>::BendingBand(const ClothModel<Real>& model, RowBand band) {
+  const int pad = Padding(model.cols);
+  BendingForceRows(model, curvature_.x.data() + pad, band.begin, band.end, bending_.x.data() + pad);
+  BendingForceRows(model, curvature_.y.data() + pad, band.begin, band.end, bending_.y.data() + pad);
+  BendingForceRows(model, curvature_.z.data() + pad, band.begin, band.end, bending_.z.data() + pad);
+}
+
 // Every node of the band sums, in a fixed order: gravity and friction, its springs (as first node
-// +f, as far node -f), then its up to six triangles' wind shares.
+// +f, as far node -f), its up to six triangles' wind shares, then its bending.
 template <typename Real>
 void ForceEvaluator<Real>::GatherBand(const ClothModel<Real>& model, const SimParams& params,
                                       const ClothState<Real>& state, RowBand band, ForceTerms terms,
@@ -279,6 +309,11 @@ void ForceEvaluator<Real>::GatherBand(const ClothModel<Real>& model, const SimPa
     add(lower_, cols + 1);
     add(lower_, 1);
   }
+  while (k < kGatherSources - 1) {
+    sources.x[k] = sources.y[k] = sources.z[k] = zero_.data();
+    ++k;
+  }
+  if (Bends(model, terms)) add(bending_, 0);
   while (k < kGatherSources) {
     sources.x[k] = sources.y[k] = sources.z[k] = zero_.data();
     ++k;
@@ -303,13 +338,16 @@ void ForceEvaluator<Real>::Evaluate(const ClothModel<Real>& model, const SimPara
   // The springs and faces of every band of rows; then each band gathers, and after_row runs on
   // each of its rows. A band writes only its own rows' slots, so the bands may run in any order.
   const int bands = BandCount(model.rows, params.threads);
+  const bool bends = Bends(model, terms);
   ParallelFor(bands, params.threads, [&](int b) {
     const RowBand band = BandOf(model.rows, b, bands);
     if (Includes(terms, ForceTerms::kSprings)) SpringBand(model, state, band);
     if (Includes(terms, ForceTerms::kWind)) WindBand(model, params, state, band);
+    if (bends) CurvatureBand(model, state, band);
   });
   ParallelFor(bands, params.threads, [&](int b) {
     const RowBand band = BandOf(model.rows, b, bands);
+    if (bends) BendingBand(model, band);
     GatherBand(model, params, state, band, terms, forces);
     if (after_row) {
       for (int r = band.begin; r < band.end; ++r) after_row(r);

@@ -2,6 +2,7 @@
 //   gravity      m_i g
 //   springs      k (|d| - L) d^ + c ((v_b - v_a) . d^) d^ on node a, d = x_b - x_a; k the
 //                spring's stiffness, or its compression stiffness when |d| < L
+//   bending      -B Q (x + beta v): the sheet's curvature (bending.hpp)
 //   air friction -friction m_i v_i
 //   wind         C A_j n_j (n_j . w) on face j, a third to each of its nodes; w - v_face with
 //                relative wind
@@ -53,7 +54,8 @@ enum class ForceTerms : unsigned {
   kSprings = 1u << 1,   ///< every spring's stretch and damping
   kFriction = 1u << 2,  ///< air friction -friction m_i v_i
   kWind = 1u << 3,      ///< the faces' wind
-  kAll = kGravity | kSprings | kFriction | kWind,
+  kBending = 1u << 4,   ///< the sheet's bending and its damping
+  kAll = kGravity | kSprings | kFriction | kWind | kBending,
 };
 constexpr ForceTerms operator|(ForceTerms a, ForceTerms b) {
   return static_cast<ForceTerms>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
@@ -86,6 +88,8 @@ class ForceEvaluator {
   void SpringBand(const ClothModel<Real>& model, const ClothState<Real>& state, RowBand band);
   void WindBand(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
                 RowBand band);
+  void CurvatureBand(const ClothModel<Real>& model, const ClothState<Real>& state, RowBand band);
+  void BendingBand(const ClothModel<Real>& model, RowBand band);
   void GatherBand(const ClothModel<Real>& model, const SimParams& params, const ClothState<Real>& state,
                   RowBand band, ForceTerms terms, NodeForces<Real>* forces) const;
 
@@ -94,6 +98,8 @@ class ForceEvaluator {
   std::vector<NodeForces<Real>> spring_;  ///< per family, at the spring's first node: the
                                           ///< force on that node (the far node gets minus it)
   NodeForces<Real> upper_, lower_;        ///< per cell: a third of each triangle's wind force
+  NodeForces<Real> curvature_;            ///< 1/m per node, L (x + beta v) (bending.hpp's padding)
+  NodeForces<Real> bending_;              ///< N per node: the bending force
   std::vector<Real> zero_;                ///< zeros, for families a model lacks
   std::vector<double> column_s_;          ///< m, each cell column's middle down the flag
   std::vector<Vec3> column_wind_;         ///< m/s, the wind there

@@ -3,7 +3,9 @@
 //
 // The physics it steps:
 //   M (x' - x - h v) / h^2 = f_s(x') + f_ext - friction M v' - C v',   v' = (x' - x) / h
-// f_s the springs' elastic forces k (|d| - L) u as in forces.hpp; f_ext gravity and wind, both at
+// f_s the springs' elastic forces k (|d| - L) u as in forces.hpp and the bending's -B Q x'
+// - beta B Q v' (bending.hpp; linear, so it sits in the global matrix whole, and its elastic force
+// at x in f_ext: -B Q x' = -B Q x - B Q dx); f_ext gravity and wind, both at
 // (x, v, t) (relative wind sees v), held through the step; friction at the end of the step (as
 // forces.hpp's law, but implicit). Spring damping, forces.hpp's c ((v_b - v_a) . u) u, is split
 // so that the matrix stays constant: C is an isotropic damping Laplacian (each spring pulls its
@@ -51,6 +53,7 @@
 #include <limits>
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/sim/bending.hpp"
 #include "server/sim/integrator.hpp"
 #include "server/sim/node_update.hpp"
 #include "server/sim/spring_laplacian.hpp"
@@ -127,6 +130,7 @@ class ProjectiveDynamics : public Integrator<Real> {
     const SimParams& params = context.params;
     laplacian_.Prepare(model, h, AirFriction(params));
     ExternalForces(context, *state);
+    AddBendingForce(model, *state, params.threads);
     AddDampingCorrection(model, params, *state);
     Predict(model, params, *state, Real(h));
     for (int i = 0; i < params.solver_iterations; ++i) {
@@ -148,6 +152,25 @@ class ProjectiveDynamics : public Integrator<Real> {
   void ExternalForces(const StepContext<Real>& context, const ClothState<Real>& state) {
     context.evaluator.Evaluate(context.model, context.params, context.wind, state, state.time, &forces_,
                                ForceTerms::kGravity | ForceTerms::kWind);
+  }
+
+  /// Adds the bending's elastic force at the step's start, -B Q x, to f_ext (the matrix holds the
+  /// rest of it, -B Q dx, and its damping).
+  void AddBendingForce(const ClothModel<Real>& model, const ClothState<Real>& state, int threads) {
+    if (model.bending_stiffness == Real(0)) return;
+    const int pad = BendingPadding(model.cols), n = model.num_nodes();
+    curvature_.assign(n + 2 * pad, Real(0));
+    bending_.resize(n);
+    const Real* positions[3] = {state.x.data(), state.y.data(), state.z.data()};
+    Real* forces[3] = {forces_.x.data(), forces_.y.data(), forces_.z.data()};
+    for (int k = 0; k < 3; ++k) {
+      ParallelFor(model.rows, threads,
+                  [&](int r) { CurvatureRows(model, positions[k], static_cast<const Real*>(nullptr), r, r + 1, curvature_.data() + pad); });
+      ParallelFor(model.rows, threads, [&](int r) {
+        BendingForceRows(model, curvature_.data() + pad, r, r + 1, bending_.data());
+        for (int i = r * model.cols; i < (r + 1) * model.cols; ++i) forces[k][i] += bending_[i];
+      });
+    }
   }
 
   /// Adds the explicit part of the spring damping to f_ext (see the top of this file): every
@@ -269,6 +292,7 @@ class ProjectiveDynamics : public Integrator<Real> {
   SpringLaplacian<Real> laplacian_;
   NodeForces<Real> forces_;  ///< f_ext
   NodeVectors<Real> iterate_, momentum_, rhs_, displacement_;
+  std::vector<Real> curvature_, bending_;  ///< one coordinate's, bending.hpp's layout
   std::vector<NodeVectors<Real>> targets_;  ///< t per spring, per family, at the spring's first node
 };
 

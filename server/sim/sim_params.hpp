@@ -23,11 +23,13 @@ enum class IntegratorKind {
 /// parameter animatable (keyframes may move it) exactly when it lives here.
 struct ForceCoefficients {
   // The sheet's moduli. Each spring's constant is modulus * dx * dy / L^2 (L its rest length),
-  // so the flag's response does not change when the grid is refined (see cloth_model.hpp).
-  double stiffness = 2000.0;       ///< N/m, structural springs (neighbours along rows, columns)
-  double shear_stiffness = 200.0;  ///< N/m, diagonal springs
-  double bend_stiffness = 100.0;   ///< N/m, springs between nodes two apart
-  double damping = 0.05;           ///< N s/m, along every spring, scaled like the stiffness
+  // and the bending acts on the sheet's curvature, so the flag's response does not change when the
+  // grid is refined (cloth_model.hpp, bending.hpp).
+  double stiffness = 2000.0;           ///< N/m, structural springs (neighbours along rows, columns)
+  double shear_stiffness = 200.0;      ///< N/m, diagonal springs
+  double bending_stiffness = 5e-3;     ///< N m, the sheet's resistance to bending (flexural rigidity)
+  double damping = 0.05;               ///< N s/m, along every spring, scaled like the stiffness;
+                                       ///< bending is damped in the same ratio to its stiffness
 
   // Air and gravity.
   double friction = 0.2;          ///< 1/s, air friction -friction m_i v_i (seed: fraction of F)

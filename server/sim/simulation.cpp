@@ -64,7 +64,7 @@ int SubstepsForRange(const SimParams& least, const SimParams& most) {
   FrequencyBound bound = EstimateFrequencyBound(model, AirFriction(most));
   SimParams least_damped = most;
   least_damped.forces.damping = least.forces.damping;
-  SetSpringConstants(least_damped, &model);
+  SetMaterialConstants(least_damped, &model);
   bound.stiffness_damping_ratio = StiffnessDampingRatio(model);
   bound.friction = AirFriction(least);
   const double stable =
@@ -152,7 +152,7 @@ void Simulation<Real>::SetParams(const SimParams& params) {
   if (regrid) {
     BuildModel();
   } else {
-    SetSpringConstants(params_, &model_);
+    SetMaterialConstants(params_, &model_);
   }
   ChooseIntegrator();
   if (regrid) RestartFlag();
@@ -174,7 +174,7 @@ void Simulation<Real>::SetControls(const ForceCoefficients& forces, const WindSe
   const bool blows =
       wind.velocity != now.velocity || wind.gust != now.gust || wind.ramp_time != now.ramp_time;
   params_.forces = forces;
-  if (changed) SetSpringConstants(params_, &model_);
+  if (changed) SetMaterialConstants(params_, &model_);
   if (blows) wind_.Set(wind, state_.time);
   if (changed || blows) Wake();
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/sim/bending.hpp"
 #include "server/sim/spring_runs.hpp"
 
 namespace flagsim::sim {
@@ -110,6 +111,7 @@ void SpringJacobian<Real>::Assemble(const ClothModel<Real>& model, const ClothSt
                                     const NodeForces<Real>& forces, double h, double friction, int threads,
                                     NodeVectors<Real>* rhs) {
   model_ = &model;
+  h_ = Real(h);
   Resize();
   rhs->Resize(model.num_nodes());
   const Real mass_scale = Real(1 + h * friction);
@@ -151,6 +153,13 @@ void SpringJacobian<Real>::InverseDiagonalRow(int r) {
     d.xx[i] = d.yy[i] = d.zz[i] = scaled_mass_[i];
     d.xy[i] = d.xz[i] = d.yz[i] = Real(0);
   }
+  const Real bending = BendingFactor();
+  for (int c = 0; bending != Real(0) && c < cols; ++c) {
+    const Real diagonal = bending * Real(BendingDiagonal(*model_, r, c));
+    d.xx[row + c] += diagonal;
+    d.yy[row + c] += diagonal;
+    d.zz[row + c] += diagonal;
+  }
   ForEachSpringRun(*model_, r, [&](const SpringRun& run) {
     const FamilyBlocks& b = blocks_[run.family];
     DiagonalKernel(b.ux.data(), b.uy.data(), b.uz.data(), b.iso.data(), b.axial.data(), d.xx.data(),
@@ -170,6 +179,7 @@ void SpringJacobian<Real>::RightHandSideRow(const ClothState<Real>& state, const
   std::fill(rhs->z.begin() + row, rhs->z.begin() + end, Real(0));
   AddSpringProducts(state.vx.data(), state.vy.data(), state.vz.data(), r, &FamilyBlocks::axial_stiffness,
                     rhs);
+  AddBendingProducts(state.vx.data(), state.vy.data(), state.vz.data(), r, h * h, rhs);
   for (int i = row; i < end; ++i) {
     rhs->x[i] = free_[i] * (h * forces.x[i] - rhs->x[i]);
     rhs->y[i] = free_[i] * (h * forces.y[i] - rhs->y[i]);
@@ -190,6 +200,18 @@ void SpringJacobian<Real>::AddSpringProducts(const Real* px, const Real* py, con
 }
 
 template <typename Real>
+void SpringJacobian<Real>::AddBendingProducts(const Real* px, const Real* py, const Real* pz, int r, Real scale,
+                                              NodeVectors<Real>* out) const {
+  if (scale == Real(0) || model_->bending_stiffness == Real(0)) return;
+  const int row = r * model_->cols;
+  for (int c = 0; c < model_->cols; ++c) {
+    out->x[row + c] += scale * BendingProductAt(*model_, px, r, c);
+    out->y[row + c] += scale * BendingProductAt(*model_, py, r, c);
+    out->z[row + c] += scale * BendingProductAt(*model_, pz, r, c);
+  }
+}
+
+template <typename Real>
 void SpringJacobian<Real>::Multiply(const NodeVectors<Real>& p, int r, NodeVectors<Real>* out) const {
   const int row = r * model_->cols, end = row + model_->cols;
   for (int i = row; i < end; ++i) {
@@ -198,6 +220,7 @@ void SpringJacobian<Real>::Multiply(const NodeVectors<Real>& p, int r, NodeVecto
     out->z[i] = scaled_mass_[i] * p.z[i];
   }
   AddSpringProducts(p.x.data(), p.y.data(), p.z.data(), r, &FamilyBlocks::axial, out);
+  AddBendingProducts(p.x.data(), p.y.data(), p.z.data(), r, BendingFactor(), out);
   for (int i = row; i < end; ++i) {
     out->x[i] *= free_[i];
     out->y[i] *= free_[i];

@@ -1,6 +1,7 @@
 // The linear system of one linearised backward-Euler substep (Baraff and Witkin 1998), matrix-free:
 //   A dv = b,  A = M (1 + h friction) - h dF/dv - h^2 dF/dx,  b = h (F + h dF/dx v)
-// with the springs' Jacobians and the air friction's (wind is left out of the Jacobian).
+// with the springs' Jacobians, the bending's and the air friction's (wind is left out of the
+// Jacobian).
 //
 // Spring s from node a to node b, d = x_b - x_a, u = d / |d|, alpha = max(0, 1 - L / |d|):
 //   dF_a/dx_b = K = k [u u^T + alpha (I - u u^T)],  dF_a/dv_b = D = c u u^T,
@@ -22,6 +23,10 @@
 // node gathers its own springs in a fixed order (spring_runs.hpp) for the inverse diagonal blocks
 // (a block Jacobi preconditioner) and b. Multiply and Precondition work on one grid row, for the
 // solver's row-parallel loops. Nothing depends on the thread count.
+//
+// The bending (bending.hpp) is linear, f = -B Q (x + beta v): dF/dx = -B Q, dF/dv = -beta B Q,
+// so it adds (h^2 + h beta) B Q to A and -h^2 B Q v to b, computed node by node from p's
+// five-point stencils (no blocks stored).
 //
 // Pinned nodes are filtered out (Baraff and Witkin's S): their rows of A p and of b are zero and
 // their preconditioner block is zero, so a solve from dv = 0 keeps their dv at exactly 0.
@@ -75,7 +80,14 @@ class SpringJacobian {
   void AddSpringProducts(const Real* px, const Real* py, const Real* pz, int r,
                          std::vector<Real> FamilyBlocks::*axial, NodeVectors<Real>* out) const;
 
+  /// h^2 + h beta: B Q's factor in A.
+  Real BendingFactor() const { return h_ * h_ + h_ * model_->bending_damping; }
+  /// out[i] += scale (B Q p)[i] over row r.
+  void AddBendingProducts(const Real* px, const Real* py, const Real* pz, int r, Real scale,
+                          NodeVectors<Real>* out) const;
+
   const ClothModel<Real>* model_ = nullptr;
+  Real h_ = 0;
   std::vector<FamilyBlocks> blocks_;
   std::vector<Real> scaled_mass_;  ///< m (1 + h friction) per node
   std::vector<Real> free_;         ///< 1 per free node, 0 per pinned node: the filter S

@@ -1,6 +1,7 @@
 #include "server/sim/spring_laplacian.hpp"
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/sim/bending.hpp"
 
 namespace flagsim::sim {
 namespace {
@@ -17,12 +18,32 @@ bool SameConstants(const std::vector<SpringFamily<Real>>& a, const std::vector<S
   return true;
 }
 
+/// (h^2 + h beta) B Q over the free nodes: each interior node j adds (h^2 + h beta) B A s_j s_j^T.
+template <typename Real>
+void AddBendingEntries(const ClothModel<Real>& model, double h, std::vector<Eigen::Triplet<Real>>* entries) {
+  if (model.bending_stiffness == Real(0)) return;
+  const double scale = (h * h + h * double(model.bending_damping)) * double(model.bending_stiffness) *
+                       double(model.dx) * double(model.dy);
+  for (int r = 1; r + 1 < model.rows; ++r) {
+    for (int c = 1; c + 1 < model.cols; ++c) {
+      const BendingStencil s = StencilOf(model, r, c);
+      for (int a = 0; a < 5; ++a) {
+        for (int b = 0; b < 5; ++b) {
+          if (model.pinned(s.nodes[a]) || model.pinned(s.nodes[b])) continue;
+          entries->emplace_back(s.nodes[a], s.nodes[b], Real(scale * s.weights[a] * s.weights[b]));
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 template <typename Real>
 bool SpringLaplacian<Real>::Current(const ClothModel<Real>& model, double h, double friction) const {
   return factorised_ && h == h_ && friction == friction_ && model.cols == cols_ && model.rows == rows_ &&
-         SameConstants(model.families, families_) && model.mass == mass_ &&
+         SameConstants(model.families, families_) && model.bending_stiffness == bending_stiffness_ &&
+         model.bending_damping == bending_damping_ && model.mass == mass_ &&
          model.inverse_mass == inverse_mass_;
 }
 
@@ -34,6 +55,8 @@ void SpringLaplacian<Real>::Prepare(const ClothModel<Real>& model, double h, dou
   cols_ = model.cols;
   rows_ = model.rows;
   families_ = model.families;
+  bending_stiffness_ = model.bending_stiffness;
+  bending_damping_ = model.bending_damping;
   mass_ = model.mass;
   inverse_mass_ = model.inverse_mass;
   Factorise(model);
@@ -61,6 +84,7 @@ void SpringLaplacian<Real>::Factorise(const ClothModel<Real>& model) {
       }
     }
   }
+  AddBendingEntries(model, h_, &entries);
   Matrix matrix(model.num_nodes(), model.num_nodes());
   matrix.setFromTriplets(entries.begin(), entries.end());  // sums the duplicates
   factorisation_.compute(matrix);

@@ -1,11 +1,12 @@
 // The constant matrix of projective dynamics' global step, factorised once and reused:
-//   A = (1 + h friction) M + h C + h^2 L
+//   A = (1 + h friction) M + h C + h^2 L + (h^2 + h beta) B Q
 // over the nodes, one scalar matrix for x, y and z. L is the stiffness-weighted graph Laplacian
 // (spring s between a and b adds k_s to A_aa and A_bb and -k_s to A_ab and A_ba), C the same with
-// the damping constants c_s. Unknowns are displacements, so a pinned node's is 0: its row and
+// the damping constants c_s; B Q is the bending's (bending.hpp: f = -B Q (x + beta v), linear,
+// so backward Euler on it is exact in the global step). Unknowns are displacements, so a pinned node's is 0: its row and
 // column are the identity's and its springs add only to their free end's diagonal.
 // Factorised by sparse LDL^T (Eigen's SimplicialLDLT, AMD ordering), again only when h, friction,
-// the grid, the spring constants or the masses change (or after Clear).
+// the grid, the spring constants, the bending or the masses change (or after Clear).
 #pragma once
 
 #include <Eigen/SparseCholesky>
@@ -39,6 +40,7 @@ class SpringLaplacian {
   double h_ = 0, friction_ = 0;
   int cols_ = 0, rows_ = 0;
   std::vector<SpringFamily<Real>> families_;
+  Real bending_stiffness_ = 0, bending_damping_ = 0;
   std::vector<Real> mass_, inverse_mass_;
 };
 

@@ -5,6 +5,10 @@
 //     C = |p_b - p_a| - L,  alpha~ = 1 / (k h^2),  gamma = c / (k h)
 //     dl = (-C - alpha~ lambda - gamma n . ((p_b - x_b) - (p_a - x_a))) / ((1 + gamma)(w_a + w_b) + alpha~)
 //     p_a -= w_a n dl;  p_b += w_b n dl;  lambda += dl
+//     then each interior node j in turn (the bending, bending.hpp), with its stencil s_j:
+//     C = sum_m s_m p_m (a 3-vector: the curvature), alpha~ = 1 / (B A h^2), gamma = beta / h
+//     dl = (-C - alpha~ lambda_j - gamma sum_m s_m (p_m - x_m)) / ((1 + gamma) sum_m w_m s_m^2 + alpha~)
+//     p_m += w_m s_m dl;  lambda_j += dl
 //   v = (p - x) / h;  x = p
 // Compliance 1/k makes the constraint the spring k (|d| - L) of forces.hpp and gamma its damping
 // c along the spring, so that with enough iterations a step approaches implicit Euler on the
@@ -16,10 +20,13 @@
 // Gauss-Seidel in a fixed order that threads cannot change: each family's springs are split
 // into two colours in which no two springs share a node (alternate columns of a family along
 // the rows, alternate rows of one down the columns; in blocks of the family's reach), so the
-// springs of one colour are solved in parallel and the colours one after another.
+// springs of one colour are solved in parallel and the colours one after another. The bending's
+// stencils reach one node either way, so nodes three rows and three columns apart never share a
+// node: nine colours by (r mod 3, c mod 3), the rows of one colour in parallel.
 #include <cmath>
 #include <limits>
 
+#include "server/sim/bending.hpp"
 #include "server/sim/integrator.hpp"
 #include "server/sim/node_update.hpp"
 
@@ -38,10 +45,11 @@ class Xpbd : public Integrator<Real> {
   void Substep(const StepContext<Real>& context, double h, ClothState<Real>* state) override {
     const ClothModel<Real>& model = context.model;
     context.evaluator.Evaluate(model, context.params, context.wind, *state, state->time, &forces_,
-                               Without(ForceTerms::kAll, ForceTerms::kSprings));
+                               Without(ForceTerms::kAll, ForceTerms::kSprings | ForceTerms::kBending));
     Predict(model, context.params.threads, Real(h), state);
     lambda_.resize(model.families.size());
     for (std::vector<Real>& lambda : lambda_) lambda.assign(model.num_nodes(), Real(0));
+    for (std::vector<Real>* lambda : {&bending_x_, &bending_y_, &bending_z_}) lambda->assign(model.num_nodes(), Real(0));
     Solve(model, context.params, Real(h), *state);
     Finish(model, context.params.threads, Real(h), state);
     state->time += h;
@@ -67,6 +75,54 @@ class Xpbd : public Integrator<Real> {
           ParallelFor(model.rows - model.families[f].dr, params.threads, [&](int r) {
             SolveRow(model, model.families[f], lambda_[f].data(), r, colour, h, start);
           });
+        }
+      }
+      if (model.bending_stiffness > Real(0)) SolveBending(model, params.threads, h, start);
+    }
+  }
+
+  // Every interior node's bending constraint, colour by colour (the top of this file).
+  void SolveBending(const ClothModel<Real>& model, int threads, Real h, const ClothState<Real>& start) {
+    for (int row_colour = 0; row_colour < 3; ++row_colour) {
+      const int first_row = row_colour == 0 ? 3 : row_colour;  // interior rows only: r >= 1
+      const int count = first_row < model.rows - 1 ? (model.rows - 2 - first_row) / 3 + 1 : 0;
+      for (int column_colour = 0; column_colour < 3; ++column_colour) {
+        ParallelFor(count, threads, [&](int k) {
+          SolveBendingRow(model, first_row + 3 * k, column_colour == 0 ? 3 : column_colour, h, start);
+        });
+      }
+    }
+  }
+
+  // The bending constraints of row r's interior nodes from column `first` on, every third.
+  void SolveBendingRow(const ClothModel<Real>& model, int r, int first, Real h, const ClothState<Real>& start) {
+    const Real area = model.dx * model.dy;
+    const Real compliance = Real(1) / (model.bending_stiffness * area * h * h);
+    const Real gamma = model.bending_damping / h;
+    for (int c = first; c + 1 < model.cols; c += 3) {
+      const BendingStencil s = StencilOf(model, r, c);
+      Real weight = 0;  // sum_m w_m s_m^2
+      for (int m = 0; m < 5; ++m) weight += model.inverse_mass[s.nodes[m]] * Real(s.weights[m] * s.weights[m]);
+      if (weight == Real(0)) continue;
+      const int j = s.nodes[0];
+      const struct {
+        std::vector<Real>& p;
+        const std::vector<Real>& x;
+        std::vector<Real>& lambda;
+      } coordinates[3] = {{px_, start.x, bending_x_}, {py_, start.y, bending_y_}, {pz_, start.z, bending_z_}};
+      for (const auto& coordinate : coordinates) {
+        Real curvature = 0, moved = 0;
+        for (int m = 0; m < 5; ++m) {
+          const int node = s.nodes[m];
+          curvature += Real(s.weights[m]) * (coordinate.p[node] - coordinate.p[j]);
+          moved += Real(s.weights[m]) * (coordinate.p[node] - coordinate.x[node]);
+        }
+        const Real dl = (-curvature - compliance * coordinate.lambda[j] - gamma * moved) /
+                        ((1 + gamma) * weight + compliance);
+        coordinate.lambda[j] += dl;
+        for (int m = 0; m < 5; ++m) {
+          const int node = s.nodes[m];
+          coordinate.p[node] += model.inverse_mass[node] * Real(s.weights[m]) * dl;
         }
       }
     }
@@ -136,6 +192,7 @@ class Xpbd : public Integrator<Real> {
   NodeForces<Real> forces_;
   std::vector<Real> px_, py_, pz_;         ///< m, predicted then corrected positions
   std::vector<std::vector<Real>> lambda_;  ///< per family, per first node: the spring's multiplier
+  std::vector<Real> bending_x_, bending_y_, bending_z_;  ///< per node: its bending constraint's multiplier
 };
 
 }  // namespace

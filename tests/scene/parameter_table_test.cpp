@@ -44,7 +44,7 @@ std::vector<std::string> BadTexts(const Parameter& parameter) {
 }
 
 TEST(ParameterTable, HasTheParametersTheDesignPromises) {
-  for (const char* name : {"mass", "stiffness", "shear_stiffness", "bend_stiffness", "damping", "friction",
+  for (const char* name : {"mass", "stiffness", "shear_stiffness", "bending_stiffness", "damping", "friction",
                            "wind_coefficient", "gravity", "dt", "integrator", "cols", "rows", "threads"}) {
     EXPECT_NE(Table().Find(name), nullptr) << name;
   }

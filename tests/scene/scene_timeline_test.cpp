@@ -40,7 +40,7 @@ void ExpectField(const std::string& reason, const std::string& field) {
 
 TEST(SceneTimeline, KeysSetTheForcesCoefficientsOnly) {
   EXPECT_EQ(AnimatableNames(),
-            (std::vector<std::string>{"stiffness", "shear_stiffness", "bend_stiffness", "damping", "friction",
+            (std::vector<std::string>{"stiffness", "shear_stiffness", "bending_stiffness", "damping", "friction",
                                       "wind_coefficient", "gravity"}));
   for (const Parameter& parameter : ParameterTable::Get().parameters()) {
     const double middle = (parameter.min_value + parameter.max_value) / 2;

@@ -45,24 +45,22 @@ TEST(ClothModel, SpringConstantsFollowTheSheetModulus) {
   const ClothModel<double> model = BuildClothModel<double>(params);
   for (const SpringFamily<double>& family : model.families) {
     const double expected = family.kind == SpringKind::kStructural ? params.forces.stiffness
-                            : family.kind == SpringKind::kShear    ? params.forces.shear_stiffness / 2
-                                                                   : params.forces.bend_stiffness / 4;
+                                                                   : params.forces.shear_stiffness / 2;
     EXPECT_NEAR(family.stiffness, expected, 1e-9 * expected);
   }
 }
 
-TEST(ClothModel, CompressedSpringsAreSofterExceptTheBendSprings) {
+TEST(ClothModel, CompressedSpringsAreSofter) {
   // Choi and Ko 2002's split: structural and shear springs resist compression with compression
-  // times their stiffness; bend springs, the sheet's bending, keep theirs.
+  // times their stiffness.
   SimParams params;
   params.compression = 0.25;
   ClothModel<double> model = BuildClothModel<double>(params);
   for (const SpringFamily<double>& family : model.families) {
-    const double fraction = family.kind == SpringKind::kBend ? 1.0 : 0.25;
-    EXPECT_DOUBLE_EQ(family.compression_stiffness, fraction * family.stiffness);
+    EXPECT_DOUBLE_EQ(family.compression_stiffness, 0.25 * family.stiffness);
   }
   params.compression = 1;  // as stiff in compression as in stretch: the same constant, bit for bit
-  SetSpringConstants(params, &model);
+  SetMaterialConstants(params, &model);
   for (const SpringFamily<double>& family : model.families) {
     EXPECT_EQ(family.compression_stiffness, family.stiffness);
   }
@@ -90,7 +88,7 @@ TEST(ClothModel, FrequencyBoundHoldsForTheLowestOrderCase) {
   params.cols = 2;
   params.rows = 2;
   params.forces.shear_stiffness = 0;
-  params.forces.bend_stiffness = 0;
+  params.forces.bending_stiffness = 0;
   const ClothModel<double> model = BuildClothModel<double>(params);
   const FrequencyBound bound = EstimateFrequencyBound(model, 0.0);
   const double k_h = model.families[0].stiffness, k_v = model.families[1].stiffness;

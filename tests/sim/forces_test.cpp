@@ -150,7 +150,8 @@ TEST(Forces, RelativeWindSubtractsTheClothVelocity) {
 }
 
 // Leaving a term out is the same, bit for bit, as evaluating a flag that lacks it: springs as a
-// model without spring families, friction as parameters with none.
+// model without spring families, bending as one without bending stiffness, friction as
+// parameters with none.
 TEST(Forces, TermsLeftOutAreAsIfTheFlagLackedThem) {
   SimParams params;
   params.cols = 13;
@@ -162,20 +163,25 @@ TEST(Forces, TermsLeftOutAreAsIfTheFlagLackedThem) {
     state.vy[i] = -0.3f * std::cos(0.23f * i);
   }
   const WindField wind(WindSettings{{6, 0, 1.5}, 0.3, 0});
-  ClothModel<float> springless = model;
+  ClothModel<float> springless = model, unbending = model;
   springless.families.clear();
+  unbending.bending_stiffness = 0;
+  ClothModel<float> bare = springless;
+  bare.bending_stiffness = 0;
   SimParams frictionless = params;
   frictionless.forces.friction = 0;
   const struct {
     ForceTerms terms;
+    const ClothModel<float>& lacking_model;
     const SimParams& lacking_params;
-  } cases[] = {{Without(ForceTerms::kAll, ForceTerms::kSprings), params},
-               {ForceTerms::kGravity | ForceTerms::kWind, frictionless}};
+  } cases[] = {{Without(ForceTerms::kAll, ForceTerms::kSprings), springless, params},
+               {Without(ForceTerms::kAll, ForceTerms::kBending), unbending, params},
+               {ForceTerms::kGravity | ForceTerms::kWind, bare, frictionless}};
   for (const auto& each : cases) {
     ForceEvaluator<float> evaluator, reference_evaluator;
     NodeForces<float> forces, reference;
     evaluator.Evaluate(model, params, wind, state, 0.4, &forces, each.terms);
-    reference_evaluator.Evaluate(springless, each.lacking_params, wind, state, 0.4, &reference);
+    reference_evaluator.Evaluate(each.lacking_model, each.lacking_params, wind, state, 0.4, &reference);
     EXPECT_EQ(forces.x, reference.x);
     EXPECT_EQ(forces.y, reference.y);
     EXPECT_EQ(forces.z, reference.z);

@@ -24,7 +24,7 @@ lab::Trial SoftFlag(IntegratorKind kind) {
   trial.params.rows = 5;
   trial.params.forces.stiffness = 200;
   trial.params.forces.shear_stiffness = 20;
-  trial.params.forces.bend_stiffness = 2;
+  trial.params.forces.bending_stiffness = 5e-5;
   trial.params.forces.damping = 0.5;
   trial.params.integrator = kind;
   trial.wind = WindSettings{{3.0, 0.0, 2.0}, 0.0, 0.0};

@@ -138,7 +138,7 @@ TEST(ProjectiveDynamics, RefactorisesWhenTheStepOrTheSpringsChange) {
   expect_fresh(0.004, "same step");
   expect_fresh(0.002, "new step");
   params.forces.stiffness *= 3;
-  SetSpringConstants(params, &model);
+  SetMaterialConstants(params, &model);
   expect_fresh(0.002, "new stiffness");
   params.forces.friction = 1;
   expect_fresh(0.002, "new friction");

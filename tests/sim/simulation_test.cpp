@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "server/sim/bending.hpp"
 #include "tests/sim/sim_test_util.hpp"
 
 namespace flagsim::sim {
@@ -20,7 +21,7 @@ WindSettings Breeze() { return WindSettings{}; }
 SimParams StillAirDrape() {
   SimParams params;
   params.forces.friction = 2.0;
-  params.forces.bend_stiffness = 150;
+  params.forces.bending_stiffness = 7.5e-4;
   return params;
 }
 
@@ -40,7 +41,7 @@ TEST(Simulation, PinnedNodesNeverMove) {
 }
 
 TEST(Simulation, FlagAtRestInStillAirSettles) {
-  // Mechanical energy (kinetic + springs + gravity) can only fall with friction and damping;
+  // Mechanical energy (kinetic + springs + bending + gravity) can only fall with friction and damping;
   // by 20 s the flag hangs still. Without self-collision: its proximity impulses, which keep
   // folds a thickness apart, may add a little energy where the drape lies on itself (the pole
   // and the ground only take it away).
@@ -53,7 +54,8 @@ TEST(Simulation, FlagAtRestInStillAirSettles) {
     const auto& state = simulation.state();
     double gravity = 0;
     for (int i = 0; i < model.num_nodes(); ++i) gravity += model.mass[i] * params.forces.gravity * state.y[i];
-    return testing::KineticEnergy(model, state) + testing::SpringEnergy(model, state) + gravity;
+    return testing::KineticEnergy(model, state) + testing::SpringEnergy(model, state) +
+           BendingEnergy(model, state.x, state.y, state.z) + gravity;
   };
   double previous = energy();
   const int steps_per_check = int(0.25 / params.dt);
@@ -110,8 +112,9 @@ TEST(Simulation, SameHashAtAnyThreadCount) {
 // 0x38a62ea50d1efbb9 before the default bending stiffness went from 20 to 100 N/m;
 // 0x85ff3c766e144025 before self-collision gave the end velocities impulses of their own and
 // collided fast flags in several passes a step; 0x64d8ad9f8298dde2 while a pass came after every
-// half spacing the fastest node travelled, not every whole one.)
-constexpr uint64_t kGoldenBreezeHash = 0x3f354a4e48529eb3;
+// half spacing the fastest node travelled, not every whole one; 0x3f354a4e48529eb3 before the
+// bend springs gave way to the material bending of bending.hpp.)
+constexpr uint64_t kGoldenBreezeHash = 0x2e151ba7613d470c;
 
 TEST(Simulation, GoldenStateHash) {
   Simulation<float> simulation(SimParams{}, Breeze());
@@ -123,8 +126,9 @@ TEST(Simulation, GoldenStateHash) {
 // physics before the stretch/compression split, the imperfection and the collisions, bit for
 // bit. (Its golden hash of that time, 0xd628f8b6767a6207, had the hoist on the pole's axis; the
 // flag now hangs the pole's radius further out, which changes the roundings, and the default
-// bending stiffness is 100 N/m, not 20.)
-constexpr uint64_t kGoldenLinearFlatBreezeHash = 0x697be2dadcd176fd;
+// bending stiffness is 100 N/m, not 20; 0x697be2dadcd176fd before the bend springs gave way to
+// the material bending of bending.hpp.)
+constexpr uint64_t kGoldenLinearFlatBreezeHash = 0x2f476f457072959;
 
 TEST(Simulation, LinearSpringsOnAFlatSheetKeepTheirGoldenStateHash) {
   SimParams params;
@@ -364,7 +368,7 @@ TEST(Simulation, TheLightPathStepsAsSetParamsDoes) {
   }
   SimParams changed = params;
   changed.forces.stiffness = 3500;
-  changed.forces.bend_stiffness = 35;
+  changed.forces.bending_stiffness = 1.75e-4;
   changed.forces.damping = 0.08;
   changed.forces.friction = 0.4;
   changed.forces.gravity = 9;

@@ -9,7 +9,7 @@
 
 const kKinds = ["real", "integer", "boolean", "choice"];  ///< parameter_t's REAL, INTEGER, BOOLEAN, CHOICE
 /// The forces' coefficients a timeline key may set, when the table does not say.
-export const kAnimatableNames = ["stiffness", "shear_stiffness", "bend_stiffness", "damping", "friction", "wind_coefficient", "gravity"];
+export const kAnimatableNames = ["stiffness", "shear_stiffness", "bending_stiffness", "damping", "friction", "wind_coefficient", "gravity"];
 
 /// flagsim.Params JSON -> [parameter], in the table's order.
 export function readParamsTable(message) {
