@@ -21,7 +21,8 @@ set(long_tests
   Simulation.FlagAtRestInStillAirSettles
   Simulation.OnlyAChangeOfControlsWakesTheFlag
   Simulation.TheGuardKeepsStableIntegratorsSoundAtTheLargestStep
-  Bending.TheBreezesCurvatureDoesNotGrowAsTheGridRefines)
+  Bending.TheBreezesCurvatureDoesNotGrowAsTheGridRefines
+  FrameDefect.TheEstimateTracksTheMeasuredErrorWithinAFactorOfTwo)
 
 foreach(executable IN LISTS unit_executables)  # every flagsim_test (tests/CMakeLists.txt)
   foreach(test IN LISTS ${executable}_TESTS)

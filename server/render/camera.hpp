@@ -49,4 +49,15 @@ struct Camera {
   void LookAt(const Eigen::Vector3d& point) { target = point; }
 };
 
+/// Where world point (x, y, z) lands on `camera`'s image, px (x right, y down), given
+/// clip_from_world = Projection() * View(); false if it is behind the eye.
+inline bool ToPixel(const Eigen::Matrix4d& clip_from_world, const Camera& camera, double x, double y, double z,
+                    Eigen::Vector2d* pixel) {
+  const Eigen::Vector4d clip = clip_from_world * Eigen::Vector4d(x, y, z, 1.0);
+  if (clip.w() <= 0) return false;
+  *pixel = Eigen::Vector2d((clip.x() / clip.w() + 1) * 0.5 * camera.width,
+                           (1 - clip.y() / clip.w()) * 0.5 * camera.height);
+  return true;
+}
+
 }  // namespace flagsim::render
