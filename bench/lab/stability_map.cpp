@@ -38,13 +38,16 @@ Trial Stiffened(Trial trial, double stiffness) {
   return trial;
 }
 
-/// The step limit of `kind` on a mode of angular frequency w (rad/s) damped at rate c (1/s).
-double Limit(sim::IntegratorKind kind, double w, double c) {
-  switch (kind) {
+/// The step limit of `kind` on a mode of angular frequency w (rad/s) damped at rate c (1/s), in
+/// `params` (the seed's scheme scales every force by 1 - friction, so its modes are slower by
+/// sqrt(1 - friction)).
+double Limit(const sim::SimParams& params, double w, double c) {
+  switch (params.integrator) {
     case sim::IntegratorKind::kSymplecticEuler:
-    case sim::IntegratorKind::kSeed:
     case sim::IntegratorKind::kVelocityVerlet:
       return 2 / w;
+    case sim::IntegratorKind::kSeed:
+      return 2 / (w * std::sqrt(1 - params.forces.friction));
     case sim::IntegratorKind::kRk4:
       return 2 * std::sqrt(2.0) / w;
     case sim::IntegratorKind::kExplicitEuler:
@@ -66,7 +69,7 @@ double LimitOnTheStates(const Trial& trial, double h) {
   RunFixed<double>(exact, substeps, [&](const sim::ClothState<double>& state) {
     if (++count % every != 0) return;
     const StiffestMode mode = StiffestModeAt(trial.params, state);
-    limit = std::min(limit, Limit(trial.params.integrator, std::sqrt(mode.omega_squared), mode.damping_rate));
+    limit = std::min(limit, Limit(trial.params, std::sqrt(mode.omega_squared), mode.damping_rate));
   });
   return limit;
 }
@@ -99,7 +102,7 @@ void StabilityMap(const std::string& csv) {
       const double rest_damping = bound.stiffness_damping_ratio * w_max[i] * w_max[i] + bound.friction;
       const double on_states = std::isfinite(claimed) ? LimitOnTheStates(trial, measured) : INFINITY;
       table.Add({sim::IntegratorName(kind), Table::Number(stiffnesses[i]), Table::Number(w_max[i]),
-                 Table::Number(measured), Table::Number(Limit(kind, w_max[i], rest_damping)),
+                 Table::Number(measured), Table::Number(Limit(trial.params, w_max[i], rest_damping)),
                  Table::Number(on_states), Table::Number(measured / on_states), Table::Number(claimed)});
     }
   }
