@@ -22,6 +22,12 @@ void Threads(const std::string& csv);
 /// For each preset scene, the cheapest integrator and step whose error stays under a pixel.
 void Cheapest(const std::string& csv);
 
+/// How long two grids, and each method and a reference, agree point by point on each preset.
+void AgreementHorizon(const std::string& csv);
+
+/// What each view needs: every preset's screen_error per grid at three distances, two image sizes.
+void Views(const std::string& csv);
+
 /// What the shape experiment runs: a scene at several grids, with settings of its own.
 struct ShapeOptions {
   std::string scene = "breeze";
