@@ -14,7 +14,7 @@
 #include "bench/lab/experiments.hpp"
 #include "bench/lab/table.hpp"
 #include "server/model/frame_defect.hpp"
-#include "server/model/resample.hpp"
+#include "server/sim/resample.hpp"
 #include "server/scene/scene_file.hpp"
 #include "server/sim/simulation.hpp"
 
@@ -72,7 +72,7 @@ void AgreementHorizon(const std::string& csv) {
       sim::Simulation<float> coarse(coarse_scene.sim, scene.wind, scene.seed);
       sim::Simulation<float> fine(fine_scene.sim, scene.wind, scene.seed);
       const Horizon horizon = Compare(&coarse, &fine, [&] {
-        const sim::ClothState<float> resampled = model::Resample(fine.model(), fine.state(), coarse.model());
+        const sim::ClothState<float> resampled = sim::Resample(fine.model(), fine.state(), coarse.model());
         return model::ScreenGap(scene.camera, coarse.state(), resampled).percentile;
       });
       AddRow(&table, preset,

@@ -6,6 +6,8 @@
 #include <initializer_list>
 #include <stdexcept>
 
+#include "server/sim/resample.hpp"
+
 namespace flagsim::sim {
 namespace {
 
@@ -157,6 +159,17 @@ void Simulation<Real>::SetParams(const SimParams& params) {
   ChooseIntegrator();
   if (regrid) RestartFlag();
   Checkpoint();
+}
+
+template <typename Real>
+void Simulation<Real>::Regrid(int cols, int rows) {
+  if (cols == params_.cols && rows == params_.rows) return;
+  const ClothModel<Real> old_model = std::move(model_);
+  params_.cols = cols;
+  params_.rows = rows;
+  BuildModel();
+  ChooseIntegrator();
+  RestartFlag(Resample(old_model, state_, model_));
 }
 
 template <typename Real>

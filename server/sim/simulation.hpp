@@ -151,6 +151,11 @@ class Simulation {
   /// Fixes the substeps per step (before the guard's factor) until the next SetParams.
   void SetSubsteps(int substeps);
 
+  /// The flag on a grid of `cols` x `rows` nodes with its motion kept: positions and velocities
+  /// resampled over the cloth's (u, v) (resample.hpp); time and step go on. What the automatic
+  /// model does between steps; a grid set by SetParams starts at rest instead.
+  void Regrid(int cols, int rows);
+
   /// The flag back at rest, flat, in its initial pose; time and step go on.
   void RestartFlag();
   /// The flag back in `pose` (its positions and velocities; the same grid), time and step going on.

@@ -13,11 +13,11 @@
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/cloth_state.hpp"
 
-namespace flagsim::model {
+namespace flagsim::sim {
 
 /// `state` of `from`'s grid, resampled onto `to`'s grid; time and step are kept.
 template <typename Real>
-sim::ClothState<Real> Resample(const sim::ClothModel<Real>& from, const sim::ClothState<Real>& state,
-                               const sim::ClothModel<Real>& to);
+ClothState<Real> Resample(const ClothModel<Real>& from, const ClothState<Real>& state,
+                               const ClothModel<Real>& to);
 
-}  // namespace flagsim::model
+}  // namespace flagsim::sim

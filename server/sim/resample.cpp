@@ -1,9 +1,9 @@
-#include "server/model/resample.hpp"
+#include "server/sim/resample.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace flagsim::model {
+namespace flagsim::sim {
 namespace {
 
 /// Where coordinate s in [0, 1] falls on a line of `count` nodes: the cell's first node and the
@@ -39,9 +39,9 @@ Real Bilinear(const std::vector<Real>& values, int a, int b, int c, int d, doubl
 }  // namespace
 
 template <typename Real>
-sim::ClothState<Real> Resample(const sim::ClothModel<Real>& from, const sim::ClothState<Real>& state,
-                               const sim::ClothModel<Real>& to) {
-  sim::ClothState<Real> out = sim::RestState(to);
+ClothState<Real> Resample(const ClothModel<Real>& from, const ClothState<Real>& state,
+                               const ClothModel<Real>& to) {
+  ClothState<Real> out = RestState(to);
   out.time = state.time;
   out.step = state.step;
   for (int r = 0; r < to.rows; ++r) {
@@ -67,9 +67,9 @@ sim::ClothState<Real> Resample(const sim::ClothModel<Real>& from, const sim::Clo
   return out;
 }
 
-template sim::ClothState<float> Resample<float>(const sim::ClothModel<float>&, const sim::ClothState<float>&,
-                                                const sim::ClothModel<float>&);
-template sim::ClothState<double> Resample<double>(const sim::ClothModel<double>&, const sim::ClothState<double>&,
-                                                  const sim::ClothModel<double>&);
+template ClothState<float> Resample<float>(const ClothModel<float>&, const ClothState<float>&,
+                                                const ClothModel<float>&);
+template ClothState<double> Resample<double>(const ClothModel<double>&, const ClothState<double>&,
+                                                  const ClothModel<double>&);
 
-}  // namespace flagsim::model
+}  // namespace flagsim::sim
