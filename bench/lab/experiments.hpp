@@ -25,6 +25,9 @@ void Cheapest(const std::string& csv);
 /// How long two grids, and each method and a reference, agree point by point on each preset.
 void AgreementHorizon(const std::string& csv);
 
+/// The cost model's constants (server/model/cost_model.hpp), fitted on one thread.
+void CostModelFit(const std::string& csv);
+
 /// What each view needs: every preset's screen_error per grid at three distances, two image sizes.
 void Views(const std::string& csv);
 

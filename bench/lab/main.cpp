@@ -2,7 +2,7 @@
 // stdout and an optional CSV.
 //
 //   build/bench/lab EXPERIMENT [--csv FILE]
-//   EXPERIMENT: orders | work-precision | stability | cost | threads | cheapest | shape | horizon | views
+//   EXPERIMENT: orders | work-precision | stability | cost | threads | cheapest | shape | horizon | views | cost-model
 //   shape also takes --scene, --grid (repeated), --set NAME=VALUE (repeated), --warmup,
 //   --seconds, --batches
 #include <CLI/CLI.hpp>
@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       {"shape", [&](const std::string& csv) { flagsim::lab::Shape(shape, csv); }},
       {"horizon", flagsim::lab::AgreementHorizon},
       {"views", flagsim::lab::Views},
+      {"cost-model", flagsim::lab::CostModelFit},
       {"orders", flagsim::lab::Orders},          {"work-precision", flagsim::lab::WorkPrecision},
       {"stability", flagsim::lab::StabilityMap}, {"cost", flagsim::lab::Cost},
       {"threads", flagsim::lab::Threads},        {"cheapest", flagsim::lab::Cheapest},

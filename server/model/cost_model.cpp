@@ -1,0 +1,35 @@
+#include "server/model/cost_model.hpp"
+
+namespace flagsim::model {
+
+// `build/bench/lab cost-model` on 2 vCPUs of an AMD EPYC (Zen 3), g++ 12.2, Release, 2026-11-27:
+// the mean of 64 x 48 and 128 x 96 (docs/lab/cost-model.txt). Implicit Euler's and projective
+// dynamics' costs per node grow with the grid (more conjugate gradient iterations; a sparse
+// factorisation's fill): 2.7 and 7.0 us per node-substep at the two grids for implicit Euler.
+const CostModel& CostModel::Fitted() {
+  static const CostModel fitted{
+      {
+          {1.03e-08, 0},         // symplectic_euler
+          {1.03e-08, 0},         // seed
+          {1.07e-08, 0},         // explicit_euler
+          {1.08e-08, 0},         // verlet
+          {4.59e-08, 0},         // rk4
+          {8.33e-09, 8.19e-08},  // xpbd: a + b iterations
+          {4.85e-06, 0},         // implicit_euler
+          {1.8e-08, 3.14e-07},   // projective: a + b iterations
+      },
+      3.26e-08};  // per node and self-collision pass
+  return fitted;
+}
+
+double CostModel::SecondsPerStep(const sim::SimParams& params, int substeps, double passes) const {
+  const IntegratorCost& cost = integrators[static_cast<int>(params.integrator)];
+  const double nodes = double(params.cols) * params.rows;
+  const bool iterates = params.integrator == sim::IntegratorKind::kXpbd ||
+                        params.integrator == sim::IntegratorKind::kProjectiveDynamics;
+  const double per_substep =
+      cost.per_node_substep + (iterates ? params.solver_iterations * cost.per_node_substep_iteration : 0.0);
+  return nodes * (substeps * per_substep + passes * per_node_collision_pass);
+}
+
+}  // namespace flagsim::model
