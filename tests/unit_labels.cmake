@@ -22,7 +22,8 @@ set(long_tests
   Simulation.OnlyAChangeOfControlsWakesTheFlag
   Simulation.TheGuardKeepsStableIntegratorsSoundAtTheLargestStep
   Bending.TheBreezesCurvatureDoesNotGrowAsTheGridRefines
-  FrameDefect.TheEstimateTracksTheMeasuredErrorWithinAFactorOfTwo)
+  FrameDefect.TheEstimateTracksTheMeasuredErrorWithinAFactorOfTwo
+  AutoModel.MeetsTheBudgetAtThePresetsViewAndCostsFarLessTenTimesFarther)
 
 foreach(executable IN LISTS unit_executables)  # every flagsim_test (tests/CMakeLists.txt)
   foreach(test IN LISTS ${executable}_TESTS)

@@ -1,0 +1,69 @@
+// `auto`: the model of the flag the server would choose for the picture it draws.
+//
+// From one snapshot of the simulation, the camera in force (its image size included) and what
+// the user left to it (the integrator, the grid or both), it builds candidate models and chooses
+// among them by model_choice.hpp:
+//   candidates  each grid of the ladder (kGridLadder, at the flag's cols : rows) times each
+//               integrator auto may use (symplectic Euler, Verlet, RK4, XPBD at 2 and 10
+//               iterations, implicit Euler, projective dynamics at 10), or only the grid or the
+//               integrator in force where the user fixed it;
+//   time error  frame_defect.hpp, measured for each integrator on the grid in force from this
+//               snapshot (a probe: three frame intervals of simulation each); on another grid of
+//               spacing s it scales as (s / s_now)^p for the explicit methods, whose stable substep
+//               follows the spacing, and stays as measured for the unconditionally stable ones,
+//               which take one substep of dt on any grid;
+//   resolution  resolution_error.hpp from this state's curvature and scale on screen;
+//   cost        cost_model.hpp at each candidate's substeps (the explicit methods' from their
+//               stability limit on the grid in force, scaled by s_now / s) and self-collision
+//               passes (those of the last step, scaled by s_now / s: a pass comes every spacing
+//               the fastest node travels);
+// and the choice is the cheapest within the budget that fits the cost budget, or the most
+// accurate that fits, or the cheapest, with hysteresis for the model in force. Everything is
+// computed from the snapshot, so the same snapshot gives the same decision; the server journals
+// each decision (it depends on the cost budget, the cores this machine gives) so that a replay
+// applies the decisions it made rather than deciding again.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "server/model/cost_model.hpp"
+#include "server/model/model_choice.hpp"
+#include "server/render/camera.hpp"
+#include "server/sim/simulation.hpp"
+
+namespace flagsim::model {
+
+/// Columns of the grids auto may choose; rows follow the flag's cols : rows.
+inline constexpr int kGridLadder[] = {16, 24, 32, 48, 64, 96, 128};
+
+struct AutoSettings {
+  bool integrator = true;       ///< auto chooses the integrator (else the snapshot's stays)
+  bool grid = true;             ///< auto chooses the grid (else the snapshot's stays)
+  double budget_px = 1.0;       ///< screen_error allowed
+  double cost_budget = 0.8;     ///< CPU seconds per simulated second the flag may take
+  double hysteresis = 0.1;      ///< the model in force is kept within this of the best
+  double collision_passes = 1;  ///< self-collision passes in the last step (0 without)
+};
+
+/// A model the server can switch to, and what auto estimates of it.
+struct ModelDecision {
+  sim::IntegratorKind integrator = sim::IntegratorKind::kSymplecticEuler;
+  int solver_iterations = 10;
+  int cols = 32, rows = 24;
+  int substeps = 1;          ///< per step, as estimated (the simulation chooses its own for stability)
+  double error_px = 0;       ///< estimated screen_error: time plus resolution
+  double time_px = 0, resolution_px = 0;
+  double cost = 0;           ///< CPU seconds per simulated second, by the cost model
+  ChoiceKind kind = ChoiceKind::kWithinBudget;
+  bool changes = false;      ///< differs from the model in force
+};
+
+/// What auto would run from `snapshot` seen by `camera`.
+ModelDecision DecideModel(const sim::SimulationSnapshot<float>& snapshot, const render::Camera& camera,
+                          const AutoSettings& settings, const CostModel& costs = CostModel::Fitted());
+
+/// "xpbd (2 iterations) at 64 x 48, 1 substep: 0.8 px, 0.4 of real time".
+std::string Describe(const ModelDecision& decision);
+
+}  // namespace flagsim::model
