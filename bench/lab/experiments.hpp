@@ -28,6 +28,9 @@ void AgreementHorizon(const std::string& csv);
 /// The cost model's constants (server/model/cost_model.hpp), fitted on one thread.
 void CostModelFit(const std::string& csv);
 
+/// What auto chooses per preset and view, estimated and measured, beside the preset's own model.
+void AutoChoice(const std::string& csv);
+
 /// What each view needs: every preset's screen_error per grid at three distances, two image sizes.
 void Views(const std::string& csv);
 

@@ -2,7 +2,7 @@
 // stdout and an optional CSV.
 //
 //   build/bench/lab EXPERIMENT [--csv FILE]
-//   EXPERIMENT: orders | work-precision | stability | cost | threads | cheapest | shape | horizon | views | cost-model
+//   EXPERIMENT: orders | work-precision | stability | cost | threads | cheapest | shape | horizon | views | cost-model | auto
 //   shape also takes --scene, --grid (repeated), --set NAME=VALUE (repeated), --warmup,
 //   --seconds, --batches
 #include <CLI/CLI.hpp>
@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       {"horizon", flagsim::lab::AgreementHorizon},
       {"views", flagsim::lab::Views},
       {"cost-model", flagsim::lab::CostModelFit},
+      {"auto", flagsim::lab::AutoChoice},
       {"orders", flagsim::lab::Orders},          {"work-precision", flagsim::lab::WorkPrecision},
       {"stability", flagsim::lab::StabilityMap}, {"cost", flagsim::lab::Cost},
       {"threads", flagsim::lab::Threads},        {"cheapest", flagsim::lab::Cheapest},
