@@ -18,13 +18,17 @@ namespace {
 
 constexpr double kFirstSeconds = 1.0, kAfterSeconds = 1.0;
 
-/// screen_error of a simulation's present state at `camera`: frame defect plus resolution.
-double MeasuredError(const sim::Simulation<float>& simulation, const render::Camera& camera) {
+/// screen_error of a simulation's present state at `camera`: frame defect and resolution, px.
+struct Measured {
+  double time = 0, resolution = 0;
+  double total() const { return time + resolution; }
+};
+Measured MeasuredError(const sim::Simulation<float>& simulation, const render::Camera& camera) {
   const int frame_steps = std::max(1, int(std::lround(1.0 / (30.0 * simulation.params().dt))));
   const model::ClothOnScreen cloth = model::MeasureClothOnScreen(simulation.model(), simulation.state(), camera);
   const sim::SimParams& p = simulation.params();
-  return model::MeasureFrameDefect(simulation.Snapshot(), camera, frame_steps).error_px +
-         model::ResolutionErrorPx(cloth, p.width, p.height, p.cols, p.rows);
+  return {model::MeasureFrameDefect(simulation.Snapshot(), camera, frame_steps).error_px,
+          model::ResolutionErrorPx(cloth, p.width, p.height, p.cols, p.rows)};
 }
 
 void Fly(sim::Simulation<float>* simulation, double seconds) {
@@ -34,8 +38,8 @@ void Fly(sim::Simulation<float>* simulation, double seconds) {
 }  // namespace
 
 void AutoChoice(const std::string& csv) {
-  Table table({"scene", "distance", "image", "auto_chose", "estimated_px", "measured_px", "estimated_cost",
-               "preset_model_px", "preset_model_cost"},
+  Table table({"scene", "distance", "image", "auto_chose", "estimated_px", "measured_px", "measured_time_px",
+               "estimated_cost", "preset_model_px", "preset_model_cost"},
               csv);
   const int images[][2] = {{1280, 720}, {640, 360}};
   for (const std::string& preset : PresetNames()) {
@@ -64,10 +68,11 @@ void AutoChoice(const std::string& csv) {
         Fly(&preset_model, kAfterSeconds);
         const double preset_cost = model::CostModel::Fitted().RealTimeFraction(
             preset_model.params(), preset_model.substeps(), preset_model.self_collision_stats().passes);
+        const Measured measured = MeasuredError(chosen, camera);
         table.Add({preset, Table::Number(distance), std::to_string(image[0]) + "x" + std::to_string(image[1]),
-                   model::Describe(decision), Table::Number(decision.error_px),
-                   Table::Number(MeasuredError(chosen, camera)), Table::Number(decision.cost),
-                   Table::Number(MeasuredError(preset_model, camera)), Table::Number(preset_cost)});
+                   model::Describe(decision), Table::Number(decision.error_px), Table::Number(measured.total()),
+                   Table::Number(measured.time), Table::Number(decision.cost),
+                   Table::Number(MeasuredError(preset_model, camera).total()), Table::Number(preset_cost)});
       }
     }
   }
