@@ -43,11 +43,7 @@ std::vector<double> NormalCurvature(const sim::ClothModel<Real>& model, const si
   for (int r = 1; r + 1 < model.rows; ++r) {
     for (int c = 1; c + 1 < model.cols; ++c) {
       const sim::BendingStencil s = sim::StencilOf(model, r, c);
-      Vector laplacian{0, 0, 0};
-      for (int m = 0; m < 5; ++m) {
-        const Vector p = At(state, s.nodes[m]), centre = At(state, s.nodes[0]);
-        for (int k = 0; k < 3; ++k) laplacian[k] += s.weights[m] * (p[k] - centre[k]);
-      }
+      const Vector laplacian = sim::CurvatureAt(model, state.x, state.y, state.z, r, c);
       Vector along, down;
       for (int k = 0; k < 3; ++k) {
         along[k] = At(state, s.nodes[2])[k] - At(state, s.nodes[1])[k];

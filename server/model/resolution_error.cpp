@@ -26,14 +26,8 @@ ClothOnScreen MeasureClothOnScreen(const sim::ClothModel<Real>& model, const sim
   std::vector<double> curvatures;
   for (int r = 1; r + 1 < model.rows; ++r) {
     for (int c = 1; c + 1 < model.cols; ++c) {
-      const sim::BendingStencil s = sim::StencilOf(model, r, c);
-      double square = 0;
-      for (const std::vector<Real>* coordinate : {&state.x, &state.y, &state.z}) {
-        double k = 0;
-        for (int m = 0; m < 5; ++m) k += s.weights[m] * (double((*coordinate)[s.nodes[m]]) - (*coordinate)[s.nodes[0]]);
-        square += k * k;
-      }
-      curvatures.push_back(std::sqrt(square));
+      const std::array<double, 3> k = sim::CurvatureAt(model, state.x, state.y, state.z, r, c);
+      curvatures.push_back(std::sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]));
     }
   }
   const Eigen::Matrix4d clip_from_world = camera.Projection() * camera.View();

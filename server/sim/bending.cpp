@@ -114,17 +114,26 @@ double BendingDiagonal(const ClothModel<Real>& model, int r, int c) {
 }
 
 template <typename Real>
+std::array<double, 3> CurvatureAt(const ClothModel<Real>& model, const std::vector<Real>& x,
+                                  const std::vector<Real>& y, const std::vector<Real>& z, int r, int c) {
+  const BendingStencil s = StencilOf(model, r, c);
+  std::array<double, 3> k{0, 0, 0};
+  const std::vector<Real>* coordinates[3] = {&x, &y, &z};
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::vector<Real>& p = *coordinates[axis];
+    for (int m = 1; m < 5; ++m) k[axis] += s.weights[m] * (double(p[s.nodes[m]]) - p[s.nodes[0]]);
+  }
+  return k;
+}
+
+template <typename Real>
 double BendingEnergy(const ClothModel<Real>& model, const std::vector<Real>& x, const std::vector<Real>& y,
                      const std::vector<Real>& z) {
   double sum = 0;
   for (int r = 1; r + 1 < model.rows; ++r) {
     for (int c = 1; c + 1 < model.cols; ++c) {
-      const BendingStencil s = StencilOf(model, r, c);
-      for (const std::vector<Real>* coordinate : {&x, &y, &z}) {
-        double k = 0;
-        for (int m = 0; m < 5; ++m) k += s.weights[m] * (double((*coordinate)[s.nodes[m]]) - (*coordinate)[s.nodes[0]]);
-        sum += k * k;
-      }
+      const std::array<double, 3> k = CurvatureAt(model, x, y, z, r, c);
+      sum += k[0] * k[0] + k[1] * k[1] + k[2] * k[2];
     }
   }
   return 0.5 * double(model.bending_stiffness) * double(model.dx) * double(model.dy) * sum;
@@ -137,6 +146,8 @@ double BendingEnergy(const ClothModel<Real>& model, const std::vector<Real>& x, 
   template BendingStencil StencilOf<Real>(const ClothModel<Real>&, int, int);                          \
   template Real BendingProductAt<Real>(const ClothModel<Real>&, const Real*, int, int);                \
   template double BendingDiagonal<Real>(const ClothModel<Real>&, int, int);                            \
+  template std::array<double, 3> CurvatureAt<Real>(const ClothModel<Real>&, const std::vector<Real>&, \
+                                                  const std::vector<Real>&, const std::vector<Real>&, int, int); \
   template double BendingEnergy<Real>(const ClothModel<Real>&, const std::vector<Real>&,               \
                                       const std::vector<Real>&, const std::vector<Real>&);
 FLAGSIM_BENDING(float)

@@ -26,6 +26,7 @@
 // s_j . x = 0 with compliance 1 / (B A).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "server/sim/cloth_model.hpp"
@@ -77,6 +78,12 @@ struct BendingStencil {
 };
 template <typename Real>
 BendingStencil StencilOf(const ClothModel<Real>& model, int r, int c);
+
+/// (L x)_j at interior node (r, c) of positions (x, y, z), in double: the mean curvature normal,
+/// 1/m (its length is the curvature a statistic or an error estimate reads).
+template <typename Real>
+std::array<double, 3> CurvatureAt(const ClothModel<Real>& model, const std::vector<Real>& x,
+                                  const std::vector<Real>& y, const std::vector<Real>& z, int r, int c);
 
 /// E, the bending energy of positions (x, y, z), J: for tests and the lab.
 template <typename Real>

@@ -119,14 +119,8 @@ TEST(Regrid, AnyOtherGridKeepsTheFlagWithinTheResamplingTolerance) {
   double curvature = 0;
   for (int r = 1; r + 1 < model.rows; ++r) {
     for (int c = 1; c + 1 < model.cols; ++c) {
-      const BendingStencil s = StencilOf(model, r, c);
-      double square = 0;
-      for (const std::vector<float>* coordinate : {&before.x, &before.y, &before.z}) {
-        double k = 0;
-        for (int m = 0; m < 5; ++m) k += s.weights[m] * (double((*coordinate)[s.nodes[m]]) - (*coordinate)[s.nodes[0]]);
-        square += k * k;
-      }
-      curvature = std::max(curvature, std::sqrt(square));
+      const std::array<double, 3> k = CurvatureAt(model, before.x, before.y, before.z, r, c);
+      curvature = std::max(curvature, std::sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]));
     }
   }
   const double h = std::max(model.dx, model.dy), tolerance = 2 * h * h * curvature / 8;
