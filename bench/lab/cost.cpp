@@ -41,15 +41,7 @@ void Cost(const std::string& csv) {
       sim::Simulation<float> simulation(params, scene.wind, scene.seed);
       simulation.Step();
       const double bytes = BytesInUse() - before;
-      int steps = 0;
-      const double start = ThreadCpuSeconds();
-      double seconds = 0;
-      while (seconds < kMeasureSeconds) {
-        simulation.Step();
-        ++steps;
-        seconds = ThreadCpuSeconds() - start;
-      }
-      const double per_step = seconds / steps;
+      const double per_step = CpuSecondsPerCall(kMeasureSeconds, [&] { simulation.Step(); });
       const double nodes = double(params.cols) * params.rows;
       table.Add({sim::IntegratorName(kind), std::to_string(params.cols), std::to_string(params.rows),
                  Table::Number(nodes), std::to_string(simulation.substeps()), Table::Number(1e3 * per_step),

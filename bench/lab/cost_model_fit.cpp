@@ -30,16 +30,14 @@ Timing Time(const sim::SimulationSnapshot<float>& snapshot) {
   sim::Simulation<float> simulation(snapshot);
   Timing timing;
   int steps = 0;
-  const double start = ThreadCpuSeconds();
-  double seconds = 0;
-  while (seconds < kMeasureSeconds) {
-    simulation.Step();
-    ++steps;
-    timing.substeps += simulation.substeps();
-    timing.passes += simulation.self_collision_stats().passes;
-    seconds = ThreadCpuSeconds() - start;
-  }
-  timing.per_step = seconds / steps;
+  timing.per_step = CpuSecondsPerCall(
+      kMeasureSeconds,
+      [&] {
+        simulation.Step();
+        timing.substeps += simulation.substeps();
+        timing.passes += simulation.self_collision_stats().passes;
+      },
+      &steps);
   timing.substeps /= steps;
   timing.passes /= steps;
   return timing;

@@ -12,4 +12,20 @@ inline double ThreadCpuSeconds() {
   return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
 }
 
+/// CPU seconds of this thread per call of `call`, which is called until at least `seconds` of
+/// CPU have gone; the number of calls in `*calls` if given.
+template <typename Call>
+double CpuSecondsPerCall(double seconds, Call&& call, int* calls = nullptr) {
+  int count = 0;
+  const double start = ThreadCpuSeconds();
+  double spent = 0;
+  while (spent < seconds) {
+    call();
+    ++count;
+    spent = ThreadCpuSeconds() - start;
+  }
+  if (calls != nullptr) *calls = count;
+  return spent / count;
+}
+
 }  // namespace flagsim::lab
