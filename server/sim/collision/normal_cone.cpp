@@ -1,4 +1,4 @@
-#include "server/sim/normal_cone.hpp"
+#include "server/sim/collision/normal_cone.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 
 #include <array>
 
-#include "server/sim/collision_geometry.hpp"
+#include "server/sim/collision/collision_geometry.hpp"
 
 namespace flagsim::sim {
 

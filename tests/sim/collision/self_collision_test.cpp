@@ -1,4 +1,4 @@
-#include "server/sim/self_collision.hpp"
+#include "server/sim/collision/self_collision.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "server/sim/collision_culling.hpp"
+#include "server/sim/collision/collision_culling.hpp"
 
 #include <algorithm>
 #include <cmath>

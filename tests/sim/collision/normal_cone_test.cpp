@@ -1,6 +1,6 @@
 // Cones of normals: the union holds both cones and is the smallest that does, and the cheap
 // narrowness test agrees with the union's.
-#include "server/sim/normal_cone.hpp"
+#include "server/sim/collision/normal_cone.hpp"
 
 #include <gtest/gtest.h>
 

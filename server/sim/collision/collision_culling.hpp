@@ -25,9 +25,9 @@
 #include <vector>
 
 #include "server/sim/cloth_mesh.hpp"
-#include "server/sim/cloth_patches.hpp"
-#include "server/sim/collision_geometry.hpp"
-#include "server/sim/normal_cone.hpp"
+#include "server/sim/collision/cloth_patches.hpp"
+#include "server/sim/collision/collision_geometry.hpp"
+#include "server/sim/collision/normal_cone.hpp"
 
 namespace flagsim::sim {
 

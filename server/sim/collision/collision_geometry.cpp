@@ -1,4 +1,4 @@
-#include "server/sim/collision_geometry.hpp"
+#include "server/sim/collision/collision_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>

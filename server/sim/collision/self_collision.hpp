@@ -43,9 +43,9 @@
 
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/cloth_state.hpp"
-#include "server/sim/collision_culling.hpp"
-#include "server/sim/collision_geometry.hpp"
-#include "server/sim/obstacles.hpp"
+#include "server/sim/collision/collision_culling.hpp"
+#include "server/sim/collision/collision_geometry.hpp"
+#include "server/sim/collision/obstacles.hpp"
 #include "server/sim/sim_params.hpp"
 
 namespace flagsim::sim {
