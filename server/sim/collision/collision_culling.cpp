@@ -8,29 +8,6 @@
 #include "server/parallel/worker_pool.hpp"
 
 namespace flagsim::sim {
-namespace {
-
-/// What PatchCones takes off a cone's cosine for its float arithmetic: 2^-16, where the
-/// rounding of the normals, the dot products, the square roots and quotients, and of the axis
-/// to a unit vector come to some 2^-21 at most.
-constexpr double kConeRounding = 0x1p-16;
-
-// Rounding to nearest puts float(y) within |y| 2^-24 of y (and within 2^-150 below 2^-126),
-// so lowering a bound by 2^-22 of itself and a little more before rounding keeps it below;
-// raising it likewise keeps it above. Under a micrometre at the flag's few metres.
-constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
-template <typename Values>
-auto FloatBelow(const Values& y) {
-  return (y - (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
-}
-template <typename Values>
-auto FloatAbove(const Values& y) {
-  return (y + (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
-}
-float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
-float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
-
-}  // namespace
 
 CollisionCulling::CollisionCulling(int cols, int rows)
     : cols_(cols),
@@ -106,7 +83,7 @@ void CollisionCulling::SweptBoxes() {
     }
     for (int i = 0; i < count; ++i) {
       moved_by_[first + i] = moved[i];
-      node_box_[first + i] = {{lo[0][i], lo[1][i], lo[2][i], 0.0f}, {hi[0][i], hi[1][i], hi[2][i], 0.0f}};
+      node_box_[first + i] = LaneBox::Of(lo[0][i], lo[1][i], lo[2][i], hi[0][i], hi[1][i], hi[2][i]);
       node_path_[first + i] = {Point(centre[0][i], centre[1][i], centre[2][i]), moved[i] / 2};
     }
   });
@@ -114,12 +91,12 @@ void CollisionCulling::SweptBoxes() {
 
 // The swept box of a triangle or an edge: its nodes' together. Made when a patch pair asks, as
 // most of the flag is culled before.
-CollisionCulling::Box CollisionCulling::TriangleBox(int t) const {
+LaneBox CollisionCulling::TriangleBox(int t) const {
   const auto [a, b, c] = mesh_.triangles[t];
   return node_box_[a].Joined(node_box_[b]).Joined(node_box_[c]);
 }
 
-CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
+LaneBox CollisionCulling::EdgeBox(int e) const {
   const auto [a, b] = mesh_.edges[e];
   return node_box_[a].Joined(node_box_[b]);
 }
@@ -132,7 +109,8 @@ CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
 // ended (one pass after another, no contact between), the start normals are the last end
 // normals.
 void CollisionCulling::TriangleNormals(bool start_is_last_end) {
-  const int slots = patch_rows() * kSlots * lane_cols();
+  const SlotRows rows = slot_rows();
+  const int slots = rows.Count(patch_rows());
   const bool reuse = start_is_last_end && normal_end_.rows() == slots;
   if (reuse) normal_start_.swap(normal_end_);
   if (normal_curl_.rows() != slots) {  // slots that no triangle fills stay zero
@@ -150,7 +128,7 @@ void CollisionCulling::TriangleNormals(bool start_is_last_end) {
         // Where the run's first triangle of cell column dc of its patch goes.
         const auto first = [&](int dc) {
           const int slot = ((r % kPatchCells) * kPatchCells + dc) * 2 + upper;
-          return ((r / kPatchCells) * kSlots + slot) * lane_cols() + c / kPatchCells;
+          return rows.Row(r / kPatchCells, slot, c / kPatchCells);
         };
         if (!reuse) StoreNormals(*start_, run, first, &normal_start_);
         StoreNormals(*end_, run, first, &normal_end_);
@@ -187,28 +165,29 @@ void CollisionCulling::StoreNormals(const NodeRows& x, const RunOfCells& run, co
   }
 }
 
-// The cones of a block of kLanes patches, a patch to a lane. A patch's cone is about its mean
+// The cones of a block of kPatchLanes patches, a patch to a lane. A patch's cone is about its mean
 // normal over the step, and holds every triangle's normal n(t) = (1 - t) n0 + t n1 - t (1 - t)
 // du x dv at every moment t of the step, since n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and
 // |n(t)| <= max(|n0|, |n1|) + curl / 4. The least of n(t) . d / |n(t)| over the triangles is
-// the cone's cosine. It is worked out in float, eight patches to a vector: each dot product,
+// the cone's cosine. It is worked out in float, a patch to a lane: each dot product,
 // square root and quotient is off by a few 2^-24 of the ratio's scale (Higham, "Accuracy and
 // Stability of Numerical Algorithms", 3.1), and so are the normals from their rounding and d
 // from a unit vector; kConeRounding, subtracted from the least, is many times all of them.
 void CollisionCulling::PatchCones(int pr, int first_col) {
-  using Lanes = Eigen::Array<float, kLanes, 1>;
+  using Lanes = PatchLanes;
   using Vector = std::array<Lanes, 3>;
-  const auto row_of = [&](int s) { return (pr * kSlots + s) * lane_cols() + first_col; };
+  const SlotRows rows = slot_rows();
+  const auto row_of = [&](int s) { return rows.Row(pr, s, first_col); };
   const auto normal = [&](const NormalRows& normals, int s) {
     Vector n;
-    for (int k = 0; k < 3; ++k) n[k] = normals.col(k).segment<kLanes>(row_of(s));
+    for (int k = 0; k < 3; ++k) n[k] = normals.col(k).segment<kPatchLanes>(row_of(s));
     return n;
   };
   const auto dot = [](const Vector& u, const Vector& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
   // The least each slot's ratio may be: -inf where the lane's patch has a triangle there, else
   // 1, so that an empty slot never lowers the cone.
   std::array<Lanes, kSlots> slot_floor;
-  for (int lane = 0; lane < kLanes; ++lane) {
+  for (int lane = 0; lane < kPatchLanes; ++lane) {
     for (int s = 0; s < kSlots; ++s) {
       const int cell_row = pr * kPatchCells + s / 2 / kPatchCells;
       const int cell_col = (first_col + lane) * kPatchCells + s / 2 % kPatchCells;
@@ -226,14 +205,14 @@ void CollisionCulling::PatchCones(int pr, int first_col) {
   for (int s = 0; s < kSlots; ++s) {
     const Vector n0 = normal(normal_start_, s), n1 = normal(normal_end_, s);
     const Lanes longest = dot(n0, n0).max(dot(n1, n1)).sqrt();
-    const Lanes curl = normal_curl_.segment<kLanes>(row_of(s)) / 4;
+    const Lanes curl = normal_curl_.segment<kPatchLanes>(row_of(s)) / 4;
     const Lanes along = dot(n0, axis).min(dot(n1, axis)) - curl;
     // At most 0 where a normal may turn 90 degrees; the least positive float keeps a degenerate
     // triangle (and an empty slot) from 0 / 0.
     const Lanes ratio = along / (longest + curl + std::numeric_limits<float>::min());
     least = least.min(ratio.max(slot_floor[s]));
   }
-  for (int lane = 0; lane < kLanes && first_col + lane < patch_cols(); ++lane) {
+  for (int lane = 0; lane < kPatchLanes && first_col + lane < patch_cols(); ++lane) {
     const int p = pr * patch_cols() + first_col + lane;
     NormalCone& cone = region_cone_[leaf_region_[p]];
     if (length[lane] == 0) {
@@ -255,13 +234,14 @@ void CollisionCulling::RegionBounds() {
   const std::vector<PatchRegion>& regions = patches_.regions;
   region_box_.resize(regions.size());
   region_cone_.resize(regions.size());
-  const int blocks_in_row = lane_cols() / kLanes;
+  const int blocks_in_row = slot_rows().lane_cols / kPatchLanes;
   ParallelFor(patch_rows() * blocks_in_row, threads_, [&](int block) {
-    const int pr = block / blocks_in_row, first_col = block % blocks_in_row * kLanes;
+    const int pr = block / blocks_in_row, first_col = block % blocks_in_row * kPatchLanes;
     PatchCones(pr, first_col);
     const int row_start = pr * patch_cols();
-    for (int p = row_start + first_col; p < row_start + std::min(patch_cols(), first_col + kLanes); ++p) {
-      Box box = Box::Empty();
+    for (int p = row_start + first_col; p < row_start + std::min(patch_cols(), first_col + kPatchLanes);
+         ++p) {
+      LaneBox box = LaneBox::Empty();
       for (int node : patches_.patches[p].nodes) box = box.Joined(node_box_[node]);
       region_box_[leaf_region_[p]] = box;
     }
@@ -379,9 +359,9 @@ void CollisionCulling::Candidates() {
 void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
                                 std::vector<PrimitivePair>* found) const {
   const ClothPatch &from = patches_.patches[p], &to = patches_.patches[q];
-  const Box& to_box = region_box_[leaf_region_[q]];
-  Box near_box = Box::Empty();  // the near primitives' boxes together: none outside it meets one
-  const auto keep_if_near = [&](int index, const Box& box) {
+  const LaneBox& to_box = region_box_[leaf_region_[q]];
+  LaneBox near_box = LaneBox::Empty();  // the near primitives' boxes together: none outside it meets one
+  const auto keep_if_near = [&](int index, const LaneBox& box) {
     if (!box.Overlaps(to_box)) return;
     near->push_back({index, box});
     near_box = near_box.Joined(box);
@@ -389,7 +369,7 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
   near->clear();
   for (int node : from.owned_nodes) keep_if_near(node, node_box_[node]);
   for (int t : near->empty() ? IndexSpan{} : to.triangles) {
-    const Box box = TriangleBox(t);
+    const LaneBox box = TriangleBox(t);
     if (!box.Overlaps(near_box)) continue;
     for (const Near& node : *near) {
       if (!node.box.Overlaps(box) || mesh_.HasCorner(t, node.index)) continue;
@@ -399,10 +379,10 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
   }
   if (p > q) return;
   near->clear();
-  near_box = Box::Empty();
+  near_box = LaneBox::Empty();
   for (int e : from.owned_edges) keep_if_near(e, EdgeBox(e));
   for (int f : near->empty() ? IndexSpan{} : to.owned_edges) {
-    const Box box = EdgeBox(f);
+    const LaneBox box = EdgeBox(f);
     if (!box.Overlaps(near_box)) continue;
     for (const Near& edge : *near) {
       const int e = edge.index;

@@ -27,6 +27,7 @@
 #include "server/sim/cloth_mesh.hpp"
 #include "server/sim/collision/cloth_patches.hpp"
 #include "server/sim/collision/collision_geometry.hpp"
+#include "server/sim/collision/lane_layout.hpp"
 #include "server/sim/collision/normal_cone.hpp"
 
 namespace flagsim::sim {
@@ -44,10 +45,8 @@ struct PrimitivePair {
 
 class CollisionCulling {
  public:
-  static constexpr int kPatchCells = 2;    ///< cells along a patch's side
-  static constexpr int kNodeBlock = 1024;  ///< nodes a thread takes at a time
-  /// Patches whose cones are worked out together, one to a lane of vector instructions.
-  static constexpr int kLanes = 8;
+  static constexpr int kPatchCells = 2;                         ///< cells along a patch's side
+  static constexpr int kNodeBlock = 1024;                       ///< nodes a thread takes at a time
   static constexpr int kSlots = 2 * kPatchCells * kPatchCells;  ///< triangles a patch has at most
 
   CollisionCulling(int cols, int rows);
@@ -68,18 +67,6 @@ class CollisionCulling {
   const std::vector<std::array<int, 2>>& patch_pairs() const { return patch_pairs_; }
 
  private:
-  /// An axis-aligned box in float, rounded outwards from the double extent it bounds, at half
-  /// the memory: it holds that extent, so a test in float finds every pair the double one
-  /// would, and the few it adds are farther apart than h, which the exact tests reject. Four
-  /// lanes, x, y, z and one that never decides a test, so that each test is a few vector
-  /// instructions.
-  struct Box {
-    Eigen::Array4f lo, hi;
-    static Box Empty() { return {Eigen::Array4f::Constant(INFINITY), Eigen::Array4f::Constant(-INFINITY)}; }
-    Box Joined(const Box& other) const { return {lo.min(other.lo), hi.max(other.hi)}; }
-    /// Each lane of one box reaches the other's: other.hi - lo >= 0 and hi - other.lo >= 0.
-    bool Overlaps(const Box& other) const { return (other.hi - lo).min(hi - other.lo).minCoeff() >= 0; }
-  };
   /// A node's straight path over the step, within the ball of `radius` about `centre`.
   struct NodePath {
     Point centre;
@@ -92,8 +79,8 @@ class CollisionCulling {
   int cell_rows() const { return int(start_->rows()) / cols_ - 1; }  ///< of the step being culled
   int patch_cols() const { return (cell_cols() + kPatchCells - 1) / kPatchCells; }
   int patch_rows() const { return (cell_rows() + kPatchCells - 1) / kPatchCells; }
-  /// Patch columns rounded up to whole blocks of kLanes.
-  int lane_cols() const { return (patch_cols() + kLanes - 1) / kLanes * kLanes; }
+  /// Where each patch's triangle normals wait for PatchCones (lane_layout.hpp).
+  SlotRows slot_rows() const { return {kSlots, LaneColumns(patch_cols())}; }
   void TriangleNormals(bool start_is_last_end);
   /// Cells of a row at a time in TriangleNormals (a multiple of kPatchCells).
   static constexpr int kRun = 64;
@@ -109,14 +96,14 @@ class CollisionCulling {
   void StoreNormals(const NodeRows& x, const RunOfCells& run, const SlotRow& first,
                     NormalRows* normals) const;
   static void Deal(const RunValues& values, int count, int dc, float* to);
-  Box TriangleBox(int triangle) const;
-  Box EdgeBox(int edge) const;
+  LaneBox TriangleBox(int triangle) const;
+  LaneBox EdgeBox(int edge) const;
   /// A primitive of one patch inside another's box, and its own box.
   struct Near {
     int index;
-    Box box;
+    LaneBox box;
   };
-  /// The leaf cones of patch row `pr`'s kLanes patches from column `first_col` on.
+  /// The leaf cones of patch row `pr`'s kPatchLanes patches from column `first_col` on.
   void PatchCones(int pr, int first_col);
   void RegionBounds();
   void SelfPairs(int region);
@@ -142,17 +129,15 @@ class CollisionCulling {
   double h_ = 0;
   int threads_ = 1;
 
-  std::vector<Box> node_box_;            ///< per node, its swept box grown by h/2
+  std::vector<LaneBox> node_box_;        ///< per node, its swept box grown by h/2
   std::vector<NodePath> node_path_;      ///< per node
-  std::vector<Box> region_box_;          ///< per region, its nodes' swept boxes together
+  std::vector<LaneBox> region_box_;      ///< per region, its nodes' swept boxes together
   std::vector<NormalCone> region_cone_;  ///< per region
   Eigen::VectorXd moved_by_;             ///< m, per node, |x1 - x0|
   // Per triangle, by patch: its normal (unnormalised, m^2) at the step's start and end, kept in
   // float (collision_culling.cpp says how the cones allow for it), and curl >= |du x dv|, which
   // bounds how far the normal strays between them. A patch's triangles in ClothMesh order fill
-  // its slots 0 to kSlots - 1; slot s of the patch in row pr and column pc is row
-  // (pr kSlots + s) lane_cols() + pc, so the same slot of a row's patches is contiguous. A slot
-  // whose triangle lies past the flag's edge (a patch cut short) stays zero.
+  // its slots 0 to kSlots - 1, in the rows slot_rows() gives (lane_layout.hpp).
   NormalRows normal_start_, normal_end_;
   Eigen::ArrayXf normal_curl_;
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another

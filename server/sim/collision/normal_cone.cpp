@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/sim/collision/lane_layout.hpp"
+
 namespace flagsim::sim {
 
 // Angles in cosines and sines: beta between the axes, ta and tb the half-angles. x holds y when

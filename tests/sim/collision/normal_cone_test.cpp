@@ -8,6 +8,8 @@
 #include <cmath>
 #include <random>
 
+#include "server/sim/collision/lane_layout.hpp"
+
 namespace flagsim::sim {
 namespace {
 
