@@ -42,7 +42,8 @@ inline constexpr int kBoxSpareLane = 3;  ///< 0 in lo and hi: never decides an o
 inline constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
 /// What a patch's cone takes off its cosine for its float arithmetic: the rounding of the
 /// normals, the dot products, the square roots and quotients, and of the axis to a unit vector
-/// come to some 2^-21 at most (CollisionCulling::PatchCones).
+/// come to some 2^-21 at most (CollisionCulling::PatchCones). On the angle that is at least
+/// 2^-16 rad, more than the unions above the patches lose (normal_cone.hpp).
 inline constexpr double kConeRounding = 0x1p-16;
 
 /// The largest float at most y (y a double or an Eigen expression of doubles).
@@ -75,8 +76,8 @@ struct ConeLanes {
     cos_half[lane] = cone.cos_half;
     sin_half[lane] = cone.sin_half;
   }
-  /// The union of each lane's pair, every lane at once (normal_cone.cpp; NormalCone::Union is
-  /// this with one lane); unused lanes are open cones.
+  /// The union of each lane's pair: NormalCone::UnionByAngles in cosines and sines, every lane
+  /// at once (normal_cone.cpp); unused lanes are open cones.
   static ConeLanes Union(const ConeLanes& a, const ConeLanes& b);
 };
 
