@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/sim/collision/axis_span.hpp"
 
 namespace flagsim::sim {
 
@@ -310,24 +311,19 @@ bool CollisionCulling::Separated(int p, int q) const {
     for (int node : patch.nodes) sum += node_path_[node].centre;
     return Point(sum / double(patch.nodes.size()));
   };
-  // The least and the most of axis . x over the patch's nodes' paths, each within its ball.
+  // What the patch's nodes' paths cover along the axis, each within its ball.
   const auto span = [&](const ClothPatch& patch, const Point& axis) {
     const double length = axis.norm();
-    std::pair<double, double> least_most{INFINITY, -INFINITY};
-    for (int node : patch.nodes) {
-      const double middle = axis.dot(node_path_[node].centre), reach = node_path_[node].radius * length;
-      least_most = {std::min(least_most.first, middle - reach), std::max(least_most.second, middle + reach)};
-    }
-    return least_most;
+    AxisSpan covered;
+    for (int node : patch.nodes)
+      covered.Add(axis.dot(node_path_[node].centre), node_path_[node].radius * length);
+    return covered;
   };
   const Point between = centre(b) - centre(a);
-  if (span(b, between).first - span(a, between).second > h_ * between.norm()) return true;
+  if (span(b, between).Beyond(span(a, between), h_ * between.norm())) return true;
   for (int patch : {p, q}) {
     const Point& normal = region_cone_[leaf_region_[patch]].axis;
-    const auto [a_least, a_most] = span(a, normal);
-    const auto [b_least, b_most] = span(b, normal);
-    const double room = h_ * normal.norm();
-    if (b_least - a_most > room || a_least - b_most > room) return true;
+    if (Apart(span(a, normal), span(b, normal), h_ * normal.norm())) return true;
   }
   return false;
 }
@@ -374,7 +370,7 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
     for (const Near& node : *near) {
       if (!node.box.Overlaps(box) || mesh_.HasCorner(t, node.index)) continue;
       const PrimitivePair pair{false, node.index, t};
-      if (!Parted(pair) && !Immobile(pair)) found->push_back(pair);
+      if (!Parted(pair) && !Immobile(Nodes(pair), *inverse_mass_)) found->push_back(pair);
     }
   }
   if (p > q) return;
@@ -388,7 +384,7 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
       const int e = edge.index;
       if ((p == q && f <= e) || !edge.box.Overlaps(box) || mesh_.Adjacent(e, f)) continue;
       const PrimitivePair pair{true, std::min(e, f), std::max(e, f)};
-      if (!Parted(pair) && !Immobile(pair)) found->push_back(pair);
+      if (!Parted(pair) && !Immobile(Nodes(pair), *inverse_mass_)) found->push_back(pair);
     }
   }
 }
@@ -399,13 +395,6 @@ std::array<int, 4> CollisionCulling::Nodes(const PrimitivePair& pair) const {
   }
   const auto [a, b, c] = mesh_.triangles[pair.b];
   return {pair.a, a, b, c};
-}
-
-bool CollisionCulling::Immobile(const PrimitivePair& pair) const {
-  const std::array<int, 4> n = Nodes(pair);
-  const std::vector<double>& inverse_mass = *inverse_mass_;
-  return inverse_mass[n[0]] == 0 && inverse_mass[n[1]] == 0 && inverse_mass[n[2]] == 0 &&
-         inverse_mass[n[3]] == 0;
 }
 
 // Whether a plane parts the pair's two primitives with room for h over the whole step. Along
@@ -419,7 +408,7 @@ bool CollisionCulling::Immobile(const PrimitivePair& pair) const {
 // parted across it, not along it), then the direction square to both edges.
 bool CollisionCulling::Parted(const PrimitivePair& pair) const {
   const std::array<int, 4> n = Nodes(pair);
-  const int split = pair.edges ? 2 : 1;
+  const int split = pair.first_nodes();
   std::array<const NodePath*, 4> path;
   for (int i = 0; i < 4; ++i) path[i] = &node_path_[n[i]];
   const auto centre = [&path](int from, int to) {
@@ -427,15 +416,15 @@ bool CollisionCulling::Parted(const PrimitivePair& pair) const {
     for (int i = from; i < to; ++i) sum += path[i]->centre;
     return Point(sum / double(to - from));
   };
-  // Unnormalised: the spans and the room are all scaled by |axis|.
+  // Whether the second primitive lies beyond the first along `axis` by more than h: one side
+  // only, so an axis that points from the first towards the second can part them and its
+  // opposite cannot. Unnormalised: the spans and the room are all scaled by |axis|.
   const auto parted_along = [&](const Point& axis) {
     const double length = axis.norm();
-    double first_most = -INFINITY, rest_least = INFINITY;
-    for (int i = 0; i < split; ++i)
-      first_most = std::max(first_most, axis.dot(path[i]->centre) + path[i]->radius * length);
-    for (int i = split; i < 4; ++i)
-      rest_least = std::min(rest_least, axis.dot(path[i]->centre) - path[i]->radius * length);
-    return rest_least - first_most > h_ * length;
+    AxisSpan first, rest;
+    for (int i = 0; i < split; ++i) first.Add(axis.dot(path[i]->centre), path[i]->radius * length);
+    for (int i = split; i < 4; ++i) rest.Add(axis.dot(path[i]->centre), path[i]->radius * length);
+    return rest.Beyond(first, h_ * length);
   };
   const Point between = centre(split, 4) - centre(0, split);
   if (parted_along(between)) return true;

@@ -9,7 +9,7 @@
 //                                two touching regions whose cones together stay narrow cannot
 //                                meet each other, boxes apart cannot meet; two patches apart
 //                                also need no plane across the line between their centres, nor
-//                                square to either's mean normal, to part them
+//                                square to either's mean normal, to part them (axis_span.hpp)
 //               => candidates    in each patch pair, the primitives whose boxes overlap and
 //                                that no plane across the line between them, nor square to the
 //                                triangle's normal or to both edges, parts
@@ -29,6 +29,7 @@
 #include "server/sim/collision/collision_geometry.hpp"
 #include "server/sim/collision/lane_layout.hpp"
 #include "server/sim/collision/normal_cone.hpp"
+#include "server/sim/collision/primitive_pair.hpp"
 
 namespace flagsim::sim {
 
@@ -36,12 +37,6 @@ namespace flagsim::sim {
 using NodeRows = Eigen::Array<double, Eigen::Dynamic, 3>;
 /// Triangle normals in float: x, y, z in columns.
 using NormalRows = Eigen::Array<float, Eigen::Dynamic, 3>;
-
-/// A pair of primitives that may meet: a node and a triangle, or two edges (ClothMesh indices).
-struct PrimitivePair {
-  bool edges = false;  ///< edge-edge; else point-triangle
-  int a = 0, b = 0;    ///< node and triangle, or two edges
-};
 
 class CollisionCulling {
  public:
@@ -111,7 +106,6 @@ class CollisionCulling {
   bool Separated(int p, int q) const;
   void Candidates();
   void AddPairs(int p, int q, std::vector<Near>* near, std::vector<PrimitivePair>* found) const;
-  bool Immobile(const PrimitivePair& pair) const;
   bool Parted(const PrimitivePair& pair) const;
 
   int cols_ = 0;

@@ -46,6 +46,7 @@
 #include "server/sim/collision/collision_culling.hpp"
 #include "server/sim/collision/collision_geometry.hpp"
 #include "server/sim/collision/obstacles.hpp"
+#include "server/sim/collision/primitive_pair.hpp"
 #include "server/sim/sim_params.hpp"
 
 namespace flagsim::sim {
@@ -116,7 +117,6 @@ class SelfCollision {
   static constexpr double kGapMargin = 1e-6;
   int Contacts(bool hold);
   bool HoldThoseInObstacles();
-  bool Immobile(const std::array<int, 4>& nodes) const;
   bool Push(const std::array<int, 4>& nodes, const std::array<double, 4>& weights, const Point& normal,
             double speed);
   void Hold(int node);
