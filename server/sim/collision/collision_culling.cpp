@@ -13,26 +13,7 @@ namespace flagsim::sim {
 CollisionCulling::CollisionCulling(int cols, int rows)
     : cols_(cols),
       mesh_(BuildClothMesh(cols, rows)),
-      patches_(BuildClothPatches(mesh_, cols, rows, kPatchCells)) {
-  leaf_region_.resize(patches_.patches.size());
-  for (size_t r = 0; r < patches_.regions.size(); ++r) {
-    if (patches_.regions[r].leaf()) leaf_region_[patches_.regions[r].patch] = int(r);
-  }
-  // Each region's height over its deepest leaf (its halves come before it), then the regions
-  // above the leaves by height.
-  std::vector<int> height(patches_.regions.size(), 0);
-  for (size_t r = 0; r < patches_.regions.size(); ++r) {
-    const PatchRegion& region = patches_.regions[r];
-    if (!region.leaf()) height[r] = 1 + std::max(height[region.left], height[region.right]);
-  }
-  for (int level = 1; level <= height.back(); ++level) {
-    level_starts_.push_back(int(by_level_.size()));
-    for (size_t r = 0; r < height.size(); ++r) {
-      if (height[r] == level) by_level_.push_back(int(r));
-    }
-  }
-  level_starts_.push_back(int(by_level_.size()));
-}
+      tree_(BuildClothPatches(mesh_, cols, rows, kPatchCells)) {}
 
 const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, const NodeRows& end,
                                                          const std::vector<double>& inverse_mass, double h,
@@ -45,8 +26,7 @@ const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, 
   SweptBoxes();
   TriangleNormals(start_is_last_end);
   RegionBounds();
-  patch_pairs_.clear();
-  SelfPairs(int(patches_.regions.size()) - 1);
+  PatchPairs();
   Candidates();
   return candidates_;
 }
@@ -215,7 +195,7 @@ void CollisionCulling::PatchCones(int pr, int first_col) {
   }
   for (int lane = 0; lane < kPatchLanes && first_col + lane < patch_cols(); ++lane) {
     const int p = pr * patch_cols() + first_col + lane;
-    NormalCone& cone = region_cone_[leaf_region_[p]];
+    NormalCone& cone = tree_.leaf_cone(p);
     if (length[lane] == 0) {
       cone = {Point::UnitZ()};
       continue;
@@ -230,11 +210,8 @@ void CollisionCulling::PatchCones(int pr, int first_col) {
 }
 
 // Regions' boxes and cones: the leaves from their nodes and triangles (in parallel, a block of
-// patches at a time), then the rest from their halves, which come before them.
+// patches at a time), then the rest from their halves (PatchTree::JoinUpwards).
 void CollisionCulling::RegionBounds() {
-  const std::vector<PatchRegion>& regions = patches_.regions;
-  region_box_.resize(regions.size());
-  region_cone_.resize(regions.size());
   const int blocks_in_row = slot_rows().lane_cols / kPatchLanes;
   ParallelFor(patch_rows() * blocks_in_row, threads_, [&](int block) {
     const int pr = block / blocks_in_row, first_col = block % blocks_in_row * kPatchLanes;
@@ -243,59 +220,22 @@ void CollisionCulling::RegionBounds() {
     for (int p = row_start + first_col; p < row_start + std::min(patch_cols(), first_col + kPatchLanes);
          ++p) {
       LaneBox box = LaneBox::Empty();
-      for (int node : patches_.patches[p].nodes) box = box.Joined(node_box_[node]);
-      region_box_[leaf_region_[p]] = box;
+      for (int node : tree_.patch(p).nodes) box = box.Joined(node_box_[node]);
+      tree_.leaf_box(p) = box;
     }
   });
-  // Level by level up the tree, ConeLanes::kLanes regions at a time.
-  for (size_t level = 0; level + 1 < level_starts_.size(); ++level) {
-    for (int first = level_starts_[level]; first < level_starts_[level + 1]; first += ConeLanes::kLanes) {
-      const int count = std::min(ConeLanes::kLanes, level_starts_[level + 1] - first);
-      ConeLanes left, right;
-      for (int lane = 0; lane < count; ++lane) {
-        const PatchRegion& region = regions[by_level_[first + lane]];
-        left.Set(lane, region_cone_[region.left]);
-        right.Set(lane, region_cone_[region.right]);
-      }
-      const ConeLanes both = ConeLanes::Union(left, right);
-      for (int lane = 0; lane < count; ++lane) {
-        const int r = by_level_[first + lane];
-        region_box_[r] = region_box_[regions[r].left].Joined(region_box_[regions[r].right]);
-        region_cone_[r] = both.Cone(lane);
-      }
-    }
-  }
+  tree_.JoinUpwards();
 }
 
-// A region whose cone is under 90 degrees cannot meet itself; otherwise its halves are
-// examined, each alone and against each other.
-void CollisionCulling::SelfPairs(int r) {
-  const PatchRegion& region = patches_.regions[r];
-  if (region_cone_[r].Narrow()) return;
-  if (region.leaf()) {
-    patch_pairs_.push_back({region.patch, region.patch});
-    return;
-  }
-  SelfPairs(region.left);
-  SelfPairs(region.right);
-  CrossPairs(region.left, region.right);
-}
-
-// Two regions meet only if their boxes overlap, and two that touch only if their cones
-// together reach 90 degrees; the larger is split until both are patches.
-void CollisionCulling::CrossPairs(int a, int b) {
-  const PatchRegion &first = patches_.regions[a], &second = patches_.regions[b];
-  if (!region_box_[a].Overlaps(region_box_[b])) return;
-  if (first.Touches(second) && NormalCone::NarrowTogether(region_cone_[a], region_cone_[b])) return;
-  if (first.leaf() && second.leaf()) {
-    if (!first.Touches(second) && Separated(first.patch, second.patch)) return;
-    patch_pairs_.push_back({std::min(first.patch, second.patch), std::max(first.patch, second.patch)});
-  } else if (!first.leaf() && (second.leaf() || first.size() >= second.size())) {
-    CrossPairs(first.left, b);
-    CrossPairs(first.right, b);
-  } else {
-    CrossPairs(a, second.left);
-    CrossPairs(a, second.right);
+// The pairs of patches the tree's descent reaches (PatchTree::FindPatchPairs), less the pairs
+// of patches apart that a plane parts (Separated), in the order the descent reached them; each
+// pair lower patch first.
+void CollisionCulling::PatchPairs() {
+  tree_.FindPatchPairs(&reached_);
+  patch_pairs_.clear();
+  for (const PatchTree::PatchPair& pair : reached_) {
+    if (!pair.touching && Separated(pair.first, pair.second)) continue;
+    patch_pairs_.push_back({std::min(pair.first, pair.second), std::max(pair.first, pair.second)});
   }
 }
 
@@ -305,7 +245,7 @@ void CollisionCulling::CrossPairs(int a, int b) {
 // cell), else one square to either patch's mean normal (two layers of a fold, one above the
 // other, are parted across it).
 bool CollisionCulling::Separated(int p, int q) const {
-  const ClothPatch &a = patches_.patches[p], &b = patches_.patches[q];
+  const ClothPatch &a = tree_.patch(p), &b = tree_.patch(q);
   const auto centre = [&](const ClothPatch& patch) {
     Point sum = Point::Zero();
     for (int node : patch.nodes) sum += node_path_[node].centre;
@@ -322,7 +262,7 @@ bool CollisionCulling::Separated(int p, int q) const {
   const Point between = centre(b) - centre(a);
   if (span(b, between).Beyond(span(a, between), h_ * between.norm())) return true;
   for (int patch : {p, q}) {
-    const Point& normal = region_cone_[leaf_region_[patch]].axis;
+    const Point& normal = tree_.leaf_cone(patch).axis;
     if (Apart(span(a, normal), span(b, normal), h_ * normal.norm())) return true;
   }
   return false;
@@ -354,8 +294,8 @@ void CollisionCulling::Candidates() {
 // meets theirs together.
 void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
                                 std::vector<PrimitivePair>* found) const {
-  const ClothPatch &from = patches_.patches[p], &to = patches_.patches[q];
-  const LaneBox& to_box = region_box_[leaf_region_[q]];
+  const ClothPatch &from = tree_.patch(p), &to = tree_.patch(q);
+  const LaneBox& to_box = tree_.leaf_box(q);
   LaneBox near_box = LaneBox::Empty();  // the near primitives' boxes together: none outside it meets one
   const auto keep_if_near = [&](int index, const LaneBox& box) {
     if (!box.Overlaps(to_box)) return;

@@ -3,7 +3,7 @@
 //
 //   (x0, x1, h) => swept boxes   each node's box over its straight path, grown by h/2
 //               => normals       each triangle's at x0 and x1, and how far it can stray between
-//               => regions       boxes and normal cones of the patch tree (cloth_patches.hpp),
+//               => regions       boxes and normal cones of the patch tree (patch_tree.hpp),
 //                                leaves from their nodes and triangles, the rest from halves
 //               => patch pairs   down the tree: a region whose cone is narrow cannot meet itself,
 //                                two touching regions whose cones together stay narrow cannot
@@ -25,10 +25,9 @@
 #include <vector>
 
 #include "server/sim/cloth_mesh.hpp"
-#include "server/sim/collision/cloth_patches.hpp"
 #include "server/sim/collision/collision_geometry.hpp"
 #include "server/sim/collision/lane_layout.hpp"
-#include "server/sim/collision/normal_cone.hpp"
+#include "server/sim/collision/patch_tree.hpp"
 #include "server/sim/collision/primitive_pair.hpp"
 
 namespace flagsim::sim {
@@ -101,8 +100,7 @@ class CollisionCulling {
   /// The leaf cones of patch row `pr`'s kPatchLanes patches from column `first_col` on.
   void PatchCones(int pr, int first_col);
   void RegionBounds();
-  void SelfPairs(int region);
-  void CrossPairs(int a, int b);
+  void PatchPairs();
   bool Separated(int p, int q) const;
   void Candidates();
   void AddPairs(int p, int q, std::vector<Near>* near, std::vector<PrimitivePair>* found) const;
@@ -110,11 +108,7 @@ class CollisionCulling {
 
   int cols_ = 0;
   ClothMesh mesh_;
-  ClothPatches patches_;
-  std::vector<int> leaf_region_;  ///< each patch's region
-  /// The regions above the leaves, by height over their deepest leaf: those of height k from
-  /// by_level_[level_starts_[k - 1]] on, each with its halves lower down.
-  std::vector<int> by_level_, level_starts_;
+  PatchTree tree_;
 
   // The step being culled (valid during Find).
   const NodeRows* start_ = nullptr;
@@ -123,17 +117,16 @@ class CollisionCulling {
   double h_ = 0;
   int threads_ = 1;
 
-  std::vector<LaneBox> node_box_;        ///< per node, its swept box grown by h/2
-  std::vector<NodePath> node_path_;      ///< per node
-  std::vector<LaneBox> region_box_;      ///< per region, its nodes' swept boxes together
-  std::vector<NormalCone> region_cone_;  ///< per region
-  Eigen::VectorXd moved_by_;             ///< m, per node, |x1 - x0|
+  std::vector<LaneBox> node_box_;    ///< per node, its swept box grown by h/2
+  std::vector<NodePath> node_path_;  ///< per node
+  Eigen::VectorXd moved_by_;         ///< m, per node, |x1 - x0|
   // Per triangle, by patch: its normal (unnormalised, m^2) at the step's start and end, kept in
   // float (collision_culling.cpp says how the cones allow for it), and curl >= |du x dv|, which
   // bounds how far the normal strays between them. A patch's triangles in ClothMesh order fill
   // its slots 0 to kSlots - 1, in the rows slot_rows() gives (lane_layout.hpp).
   NormalRows normal_start_, normal_end_;
   Eigen::ArrayXf normal_curl_;
+  std::vector<PatchTree::PatchPair> reached_;    ///< the pairs the tree's descent reached
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
   std::vector<std::vector<PrimitivePair>> pair_candidates_;  ///< per patch pair, its candidates
   std::vector<std::vector<Near>>
