@@ -6,8 +6,8 @@
 // surface cannot meet itself when some direction V has N . V > 0 for every normal N of it and
 // the surface's contour, projected along V, does not cross itself. In the normal-cone form
 // (Provot 1997): the normals lie in a cone of half-angle under 90 degrees ("narrow"), and V is
-// its axis. The culling tests the cone alone and not the contour; its cones hold every normal
-// over the whole step, not at one moment.
+// its axis. The culling tests the cone alone and not the contour (README.md says what that
+// leaves out); its cones hold every normal over the whole step, not at one moment.
 //
 // The cones of a tree of regions are joined upwards, two halves at a time: the union of two
 // cones is the smallest cone holding both (UnionByAngles states it by its angles). The culling

@@ -1,7 +1,8 @@
 // The cloth never passes through itself: after each step, the motion of every node from its
 // start x0 to its end x1 is corrected so that no point crosses a triangle and no edge crosses
 // an edge (Bridson, Fedkiw and Anderson 2002, "Robust treatment of collisions, contact and
-// friction for cloth animation", in the form of a correction after the step).
+// friction for cloth animation", in the form of a correction after the step). README.md gives
+// the whole algorithm in order, stage by stage, with its files and papers.
 //
 // With v = (x1 - x0) / dt each node's average velocity over the step:
 //   cull       the pairs of primitives that may come within h over the step: the broad phase
