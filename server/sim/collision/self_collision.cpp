@@ -154,7 +154,7 @@ void SelfCollision<Real>::Proximity() {
     const double distance = gap.norm();
     start_gap_[c] = distance;
     if (distance >= thickness_ || distance == 0) return;
-    found->push_back({c, k, gap / distance, 0.1 * (thickness_ - distance) / dt_});
+    found->push_back({c, k, gap / distance, kProximityShare * (thickness_ - distance) / dt_});
   });
   for (const Proximate& close : proximate_)
     Push(Nodes(candidates()[close.candidate]), close.k, close.normal, close.speed);
@@ -218,9 +218,10 @@ int SelfCollision<Real>::Contacts(bool hold) {
     Point normal = pair.edges ? Point((at[1] - at[0]).cross(at[3] - at[2]))
                               : Point((at[2] - at[1]).cross(at[3] - at[1]));
     const Point start_gap = Gap(k, points.start);
-    if (normal.squaredNorm() < 1e-24) normal = start_gap;  // parallel edges: part them as they began
-    if (normal.dot(start_gap) < 0) normal = -normal;       // from the side each began on
-    if (normal.squaredNorm() == 0 || !Push(n, k, normal.normalized(), 0.1 * thickness_ / dt_)) continue;
+    if (normal.squaredNorm() < kParallelEdges) normal = start_gap;  // parallel edges: part them as they began
+    if (normal.dot(start_gap) < 0) normal = -normal;                // from the side each began on
+    if (normal.squaredNorm() == 0 || !Push(n, k, normal.normalized(), kPartingShare * thickness_ / dt_))
+      continue;
     for (int node : n) touched_[node] = true;
     ++contacts;
     ++stats_.contacts;

@@ -80,6 +80,13 @@ class SelfCollision {
   static constexpr int kImpulseRounds = 6;          ///< rounds of impulses before the fail-safe
   static constexpr double kContactTolerance = 0.1;  ///< of h: how near counts as a contact
   static constexpr double kSpacingShare = 0.25;     ///< h is at most this share of the grid spacing
+  /// Of the overlap h - d: how far a proximity impulse parts a pair d apart per step.
+  static constexpr double kProximityShare = 0.1;
+  /// Of h: how far the parting speed a contact impulse leaves moves a pair apart per step.
+  static constexpr double kPartingShare = 0.1;
+  /// m^4: a contact normal (two edges' cross product, a triangle's (b - a) x (c - a)) whose
+  /// squared length is under this has no direction: the edges are parallel, the triangle flat.
+  static constexpr double kParallelEdges = 1e-24;
 
   explicit SelfCollision(const ClothModel<Real>& model);
 
