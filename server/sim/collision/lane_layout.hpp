@@ -46,7 +46,8 @@ inline constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
 /// 2^-16 rad, more than the unions above the patches lose (normal_cone.hpp).
 inline constexpr double kConeRounding = 0x1p-16;
 
-/// The largest float at most y (y a double or an Eigen expression of doubles).
+/// A float at most y, and one at least y (y a double or an Eigen expression of doubles): the
+/// bound moved outwards before it is rounded.
 template <typename Values>
 auto FloatBelow(const Values& y) {
   return (y - (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
