@@ -4,9 +4,9 @@
 //   checkpoint   every kCheckpointInterval steps, and whenever parameters or wind change
 //   advance      n substeps of the integrator: n from its stability limit (with a safety
 //                factor) or the `substeps` parameter, times the guard's factor; after each, nodes
-//                in the pole or the ground are put back on its surface (obstacles.hpp)
+//                in the pole or the ground are put back on its surface (collision/obstacles.hpp)
 //   collide      with self_collision, the motion is corrected so that the cloth does not pass
-//                through itself (self_collision.hpp): after the step, or after each of several
+//                through itself (collision/self_collision.hpp): after the step, or after each of several
 //                groups of its substeps where nodes move fast for the grid (CollisionPasses).
 //                Both corrections keep what the integrator carries between substeps: a lag of
 //                one substep at a contact, as with SetControls, rather than a new
@@ -31,10 +31,10 @@
 #include "server/parallel/worker_pool.hpp"
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/cloth_state.hpp"
+#include "server/sim/collision/self_collision.hpp"
 #include "server/sim/forces.hpp"
 #include "server/sim/integrator.hpp"
 #include "server/sim/node_vectors.hpp"
-#include "server/sim/self_collision.hpp"
 #include "server/sim/sim_params.hpp"
 #include "server/sim/wind_field.hpp"
 

@@ -1,4 +1,4 @@
-#include "server/sim/self_collision.hpp"
+#include "server/sim/collision/self_collision.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/sim/collision/axis_span.hpp"
 
 namespace flagsim::sim {
 namespace {
@@ -26,16 +27,13 @@ std::array<double, 4> ClosestWeights(bool edges, const std::array<Point, 4>& p) 
 /// Whether the first `split` points and the rest are more than h apart along x, y or z: then
 /// the primitives they span are farther apart than h too (a cheap reject).
 bool ApartAlongAnAxis(int split, const std::array<Point, 4>& p, double h) {
-  Point first_lo = p[0], first_hi = p[0], rest_lo = p[3], rest_hi = p[3];
-  for (int i = 1; i < split; ++i) {
-    first_lo = first_lo.cwiseMin(p[i]);
-    first_hi = first_hi.cwiseMax(p[i]);
+  for (int k = 0; k < 3; ++k) {
+    AxisSpan first, rest;
+    for (int i = 0; i < split; ++i) first.Add(p[i][k]);
+    for (int i = split; i < 4; ++i) rest.Add(p[i][k]);
+    if (Apart(first, rest, h)) return true;
   }
-  for (int i = split; i < 3; ++i) {
-    rest_lo = rest_lo.cwiseMin(p[i]);
-    rest_hi = rest_hi.cwiseMax(p[i]);
-  }
-  return ((rest_lo - first_hi).array() > h).any() || ((first_lo - rest_hi).array() > h).any();
+  return false;
 }
 
 /// sum k_i p_i: from the second primitive's closest point to the first's.
@@ -120,12 +118,6 @@ void SelfCollision<Real>::Load(const ClothModel<Real>& model, const ClothState<R
   moved_.assign(n, false);
 }
 
-template <typename Real>
-bool SelfCollision<Real>::Immobile(const std::array<int, 4>& nodes) const {
-  return inverse_mass_[nodes[0]] == 0 && inverse_mass_[nodes[1]] == 0 && inverse_mass_[nodes[2]] == 0 &&
-         inverse_mass_[nodes[3]] == 0;
-}
-
 // body(c, found) for every candidate c, in blocks shared among the threads, each block's
 // finds into a list of its own; the lists joined in the candidates' order.
 template <typename Real>
@@ -156,13 +148,13 @@ void SelfCollision<Real>::Proximity() {
     const std::array<int, 4> n = Nodes(pair);
     const std::array<Point, 4> start{Start(n[0]), Start(n[1]), Start(n[2]), Start(n[3])};
     start_gap_[c] = thickness_;
-    if (ApartAlongAnAxis(pair.edges ? 2 : 1, start, thickness_)) return;
+    if (ApartAlongAnAxis(pair.first_nodes(), start, thickness_)) return;
     const std::array<double, 4> k = ClosestWeights(pair.edges, start);
     const Point gap = Gap(k, start);
     const double distance = gap.norm();
     start_gap_[c] = distance;
     if (distance >= thickness_ || distance == 0) return;
-    found->push_back({c, k, gap / distance, 0.1 * (thickness_ - distance) / dt_});
+    found->push_back({c, k, gap / distance, kProximityShare * (thickness_ - distance) / dt_});
   });
   for (const Proximate& close : proximate_)
     Push(Nodes(candidates()[close.candidate]), close.k, close.normal, close.speed);
@@ -196,7 +188,7 @@ template <typename Real>
 int SelfCollision<Real>::Contacts(bool hold) {
   ForEachCandidate(&hit_blocks_, &hits_, [this](int c, std::vector<Hit>* found) {
     const std::array<int, 4> n = Nodes(candidates()[c]);
-    if (Immobile(n)) return;
+    if (Immobile(n, inverse_mass_)) return;
     if (const std::optional<double> when = ContactTime(c, n)) found->push_back({c, *when});
   });
   touched_.assign(start_.rows(), false);
@@ -211,7 +203,7 @@ int SelfCollision<Real>::Contacts(bool hold) {
     const std::optional<double> at_start = hit_at_start ? std::optional(next_hit->when) : std::nullopt;
     if (hit_at_start) ++next_hit;
     const std::array<int, 4> n = Nodes(pair);
-    if (Immobile(n)) continue;
+    if (Immobile(n, inverse_mass_)) continue;
     const std::optional<double> when = touched(n) ? ContactTime(c, n) : at_start;
     if (!when) continue;
     if (hold) {
@@ -226,9 +218,10 @@ int SelfCollision<Real>::Contacts(bool hold) {
     Point normal = pair.edges ? Point((at[1] - at[0]).cross(at[3] - at[2]))
                               : Point((at[2] - at[1]).cross(at[3] - at[1]));
     const Point start_gap = Gap(k, points.start);
-    if (normal.squaredNorm() < 1e-24) normal = start_gap;  // parallel edges: part them as they began
-    if (normal.dot(start_gap) < 0) normal = -normal;       // from the side each began on
-    if (normal.squaredNorm() == 0 || !Push(n, k, normal.normalized(), 0.1 * thickness_ / dt_)) continue;
+    if (normal.squaredNorm() < kParallelEdges) normal = start_gap;  // parallel edges: part them as they began
+    if (normal.dot(start_gap) < 0) normal = -normal;                // from the side each began on
+    if (normal.squaredNorm() == 0 || !Push(n, k, normal.normalized(), kPartingShare * thickness_ / dt_))
+      continue;
     for (int node : n) touched_[node] = true;
     ++contacts;
     ++stats_.contacts;

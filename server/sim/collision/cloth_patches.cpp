@@ -1,4 +1,4 @@
-#include "server/sim/cloth_patches.hpp"
+#include "server/sim/collision/cloth_patches.hpp"
 
 #include <algorithm>
 #include <cstdint>

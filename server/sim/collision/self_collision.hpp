@@ -1,7 +1,8 @@
 // The cloth never passes through itself: after each step, the motion of every node from its
 // start x0 to its end x1 is corrected so that no point crosses a triangle and no edge crosses
 // an edge (Bridson, Fedkiw and Anderson 2002, "Robust treatment of collisions, contact and
-// friction for cloth animation", in the form of a correction after the step).
+// friction for cloth animation", in the form of a correction after the step). README.md gives
+// the whole algorithm in order, stage by stage, with its files and papers.
 //
 // With v = (x1 - x0) / dt each node's average velocity over the step:
 //   cull       the pairs of primitives that may come within h over the step: the broad phase
@@ -43,9 +44,10 @@
 
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/cloth_state.hpp"
-#include "server/sim/collision_culling.hpp"
-#include "server/sim/collision_geometry.hpp"
-#include "server/sim/obstacles.hpp"
+#include "server/sim/collision/collision_culling.hpp"
+#include "server/sim/collision/collision_geometry.hpp"
+#include "server/sim/collision/obstacles.hpp"
+#include "server/sim/collision/primitive_pair.hpp"
 #include "server/sim/sim_params.hpp"
 
 namespace flagsim::sim {
@@ -78,6 +80,13 @@ class SelfCollision {
   static constexpr int kImpulseRounds = 6;          ///< rounds of impulses before the fail-safe
   static constexpr double kContactTolerance = 0.1;  ///< of h: how near counts as a contact
   static constexpr double kSpacingShare = 0.25;     ///< h is at most this share of the grid spacing
+  /// Of the overlap h - d: how far a proximity impulse parts a pair d apart per step.
+  static constexpr double kProximityShare = 0.1;
+  /// Of h: how far the parting speed a contact impulse leaves moves a pair apart per step.
+  static constexpr double kPartingShare = 0.1;
+  /// m^4: a contact normal (two edges' cross product, a triangle's (b - a) x (c - a)) whose
+  /// squared length is under this has no direction: the edges are parallel, the triangle flat.
+  static constexpr double kParallelEdges = 1e-24;
 
   explicit SelfCollision(const ClothModel<Real>& model);
 
@@ -116,7 +125,6 @@ class SelfCollision {
   static constexpr double kGapMargin = 1e-6;
   int Contacts(bool hold);
   bool HoldThoseInObstacles();
-  bool Immobile(const std::array<int, 4>& nodes) const;
   bool Push(const std::array<int, 4>& nodes, const std::array<double, 4>& weights, const Point& normal,
             double speed);
   void Hold(int node);

@@ -1,6 +1,6 @@
 // The broad phase misses nothing: every pair of primitives that comes within h of each other at
 // some moment of a step is a candidate, checked against every pair of the mesh by brute force.
-#include "server/sim/collision_culling.hpp"
+#include "server/sim/collision/collision_culling.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "server/sim/collision_geometry.hpp"
+#include "server/sim/collision/collision_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +8,11 @@ namespace flagsim::sim {
 namespace {
 
 double Clamp01(double value) { return std::clamp(value, 0.0, 1.0); }
+
+/// Bisection stops after kBisections halvings of a bracket (the unit interval to 2^-52), or
+/// when the bracket is narrower than kRootWidth of the step.
+constexpr int kBisections = 52;
+constexpr double kRootWidth = 1e-12;
 
 /// f(t) = c[0] + c[1] t + c[2] t^2 + c[3] t^3.
 struct Cubic {
@@ -58,7 +63,7 @@ int RootsInUnitInterval(const Cubic& f, std::array<double, 3>* roots) {
       continue;
     }
     if (f_lo == 0 || (f_lo < 0) == (f_hi < 0)) continue;
-    for (int iteration = 0; iteration < 52 && hi - lo > 1e-12; ++iteration) {
+    for (int iteration = 0; iteration < kBisections && hi - lo > kRootWidth; ++iteration) {
       const double mid = 0.5 * (lo + hi), f_mid = f(mid);
       if ((f_mid < 0) == (f_lo < 0)) {
         lo = mid;

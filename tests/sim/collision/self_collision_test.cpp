@@ -1,4 +1,6 @@
-#include "server/sim/self_collision.hpp"
+// Self-collision over whole scenes: no crossing, a step where nothing is near left bit for bit,
+// the same states at any thread count; and the independent checker the scenes are judged by.
+#include "server/sim/collision/self_collision.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,39 +17,6 @@ namespace flagsim::sim {
 namespace {
 
 using lab::CrossingTrianglePairs;
-
-TEST(CollisionGeometry, ClosestPointsOnATriangleAndTwoSegments) {
-  const Point a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
-  EXPECT_TRUE(ClosestOnTriangle({0.25, 0.25, 1}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.25, 0.25)));
-  EXPECT_TRUE(ClosestOnTriangle({2, -1, 0}, a, b, c).isApprox(Eigen::Vector3d(0, 1, 0)));
-  EXPECT_TRUE(ClosestOnTriangle({1, 1, 0}, a, b, c).isApprox(Eigen::Vector3d(0, 0.5, 0.5)));
-  const SegmentParameters crossing = ClosestOnSegments({0, 0, 0}, {2, 0, 0}, {0.5, -1, 1}, {0.5, 1, 1});
-  EXPECT_DOUBLE_EQ(crossing.s, 0.25);
-  EXPECT_DOUBLE_EQ(crossing.t, 0.5);
-}
-
-TEST(CollisionGeometry, APointThroughATriangleMeetsItWhenItReachesThePlane) {
-  const Point a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
-  const Primitives through{{Point{0.2, 0.2, 0.3}, a, b, c}, {Point{0.2, 0.2, -0.1}, a, b, c}};
-  const std::optional<double> when = PointTriangleContact(through, 1e-6);
-  ASSERT_TRUE(when.has_value());
-  EXPECT_NEAR(*when, 0.75, 1e-9);
-  const Primitives beside{{Point{1.2, 1.2, 0.3}, a, b, c}, {Point{1.2, 1.2, -0.1}, a, b, c}};
-  EXPECT_FALSE(PointTriangleContact(beside, 1e-6).has_value());
-}
-
-TEST(CollisionGeometry, TwoEdgesThatPassThroughEachOtherMeet) {
-  // One edge along x at z = 0.2 falls to z = -0.2 through a fixed edge along y.
-  const Primitives through{{Point{-1, 0, 0.2}, Point{1, 0, 0.2}, Point{0, -1, 0}, Point{0, 1, 0}},
-                           {Point{-1, 0, -0.2}, Point{1, 0, -0.2}, Point{0, -1, 0}, Point{0, 1, 0}}};
-  const std::optional<double> when = EdgeEdgeContact(through, 1e-6);
-  ASSERT_TRUE(when.has_value());
-  EXPECT_NEAR(*when, 0.5, 1e-9);
-  Primitives apart = through;
-  for (Point& p : apart.start) p.x() += p.y() == 0 ? 5 : 0;  // the moving edge shifted clear
-  for (Point& p : apart.end) p.x() += p.y() == 0 ? 5 : 0;
-  EXPECT_FALSE(EdgeEdgeContact(apart, 1e-6).has_value());
-}
 
 TEST(TriangleCrossings, FindTheCrossingOfTwoTrianglesAndNothingInAFlatSheet) {
   const std::vector<std::array<int, 3>> triangles{{0, 1, 2}, {3, 4, 5}};
@@ -132,23 +101,6 @@ TEST(SelfCollision, TheSameStatesAtAnyThreadCount) {
   }
   EXPECT_GT(contacts, 50) << "the gale should have touched itself (78 impulses when written)";
   for (int threads = 2; threads <= 4; ++threads) EXPECT_EQ(hashes[threads - 1], hashes[0]) << threads << " threads";
-}
-
-TEST(Obstacles, AFlagOnAShortPoleInStillAirEndsUpOnTheGroundAndLiesThere) {
-  Scene scene = LoadScene("hanging");
-  scene.sim.pole_height = 1.2;  // the flag's foot 0.18 m above the ground, its fly 1.5 m long
-  Simulation<float> simulation(scene.sim, scene.wind, scene.seed);
-  double lowest = INFINITY;
-  while (simulation.state().time < 10) {
-    simulation.Step();
-    for (float y : simulation.state().y) lowest = std::min(lowest, double(y));
-  }
-  EXPECT_GE(lowest, 0.0);
-  int resting = 0;  // nodes on the ground at the end
-  for (float y : simulation.state().y) resting += y <= scene.sim.thickness;
-  EXPECT_GT(resting, 0);
-  std::printf("on a %.1f m pole: %d nodes rest on the ground, lowest %.4f m\n", scene.sim.pole_height,
-              resting, lowest);
 }
 
 }  // namespace

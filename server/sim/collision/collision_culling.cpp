@@ -1,4 +1,4 @@
-#include "server/sim/collision_culling.hpp"
+#include "server/sim/collision/collision_culling.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,55 +6,14 @@
 #include <utility>
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/sim/collision/axis_span.hpp"
 
 namespace flagsim::sim {
-namespace {
-
-/// What PatchCones takes off a cone's cosine for its float arithmetic: 2^-16, where the
-/// rounding of the normals, the dot products, the square roots and quotients, and of the axis
-/// to a unit vector come to some 2^-21 at most.
-constexpr double kConeRounding = 0x1p-16;
-
-// Rounding to nearest puts float(y) within |y| 2^-24 of y (and within 2^-150 below 2^-126),
-// so lowering a bound by 2^-22 of itself and a little more before rounding keeps it below;
-// raising it likewise keeps it above. Under a micrometre at the flag's few metres.
-constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
-template <typename Values>
-auto FloatBelow(const Values& y) {
-  return (y - (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
-}
-template <typename Values>
-auto FloatAbove(const Values& y) {
-  return (y + (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
-}
-float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
-float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
-
-}  // namespace
 
 CollisionCulling::CollisionCulling(int cols, int rows)
     : cols_(cols),
       mesh_(BuildClothMesh(cols, rows)),
-      patches_(BuildClothPatches(mesh_, cols, rows, kPatchCells)) {
-  leaf_region_.resize(patches_.patches.size());
-  for (size_t r = 0; r < patches_.regions.size(); ++r) {
-    if (patches_.regions[r].leaf()) leaf_region_[patches_.regions[r].patch] = int(r);
-  }
-  // Each region's height over its deepest leaf (its halves come before it), then the regions
-  // above the leaves by height.
-  std::vector<int> height(patches_.regions.size(), 0);
-  for (size_t r = 0; r < patches_.regions.size(); ++r) {
-    const PatchRegion& region = patches_.regions[r];
-    if (!region.leaf()) height[r] = 1 + std::max(height[region.left], height[region.right]);
-  }
-  for (int level = 1; level <= height.back(); ++level) {
-    level_starts_.push_back(int(by_level_.size()));
-    for (size_t r = 0; r < height.size(); ++r) {
-      if (height[r] == level) by_level_.push_back(int(r));
-    }
-  }
-  level_starts_.push_back(int(by_level_.size()));
-}
+      tree_(BuildClothPatches(mesh_, cols, rows, kPatchCells)) {}
 
 const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, const NodeRows& end,
                                                          const std::vector<double>& inverse_mass, double h,
@@ -67,8 +26,7 @@ const std::vector<PrimitivePair>& CollisionCulling::Find(const NodeRows& start, 
   SweptBoxes();
   TriangleNormals(start_is_last_end);
   RegionBounds();
-  patch_pairs_.clear();
-  SelfPairs(int(patches_.regions.size()) - 1);
+  PatchPairs();
   Candidates();
   return candidates_;
 }
@@ -106,7 +64,7 @@ void CollisionCulling::SweptBoxes() {
     }
     for (int i = 0; i < count; ++i) {
       moved_by_[first + i] = moved[i];
-      node_box_[first + i] = {{lo[0][i], lo[1][i], lo[2][i], 0.0f}, {hi[0][i], hi[1][i], hi[2][i], 0.0f}};
+      node_box_[first + i] = LaneBox::Of(lo[0][i], lo[1][i], lo[2][i], hi[0][i], hi[1][i], hi[2][i]);
       node_path_[first + i] = {Point(centre[0][i], centre[1][i], centre[2][i]), moved[i] / 2};
     }
   });
@@ -114,12 +72,12 @@ void CollisionCulling::SweptBoxes() {
 
 // The swept box of a triangle or an edge: its nodes' together. Made when a patch pair asks, as
 // most of the flag is culled before.
-CollisionCulling::Box CollisionCulling::TriangleBox(int t) const {
+LaneBox CollisionCulling::TriangleBox(int t) const {
   const auto [a, b, c] = mesh_.triangles[t];
   return node_box_[a].Joined(node_box_[b]).Joined(node_box_[c]);
 }
 
-CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
+LaneBox CollisionCulling::EdgeBox(int e) const {
   const auto [a, b] = mesh_.edges[e];
   return node_box_[a].Joined(node_box_[b]);
 }
@@ -132,7 +90,8 @@ CollisionCulling::Box CollisionCulling::EdgeBox(int e) const {
 // ended (one pass after another, no contact between), the start normals are the last end
 // normals.
 void CollisionCulling::TriangleNormals(bool start_is_last_end) {
-  const int slots = patch_rows() * kSlots * lane_cols();
+  const SlotRows rows = slot_rows();
+  const int slots = rows.Count(patch_rows());
   const bool reuse = start_is_last_end && normal_end_.rows() == slots;
   if (reuse) normal_start_.swap(normal_end_);
   if (normal_curl_.rows() != slots) {  // slots that no triangle fills stay zero
@@ -150,7 +109,7 @@ void CollisionCulling::TriangleNormals(bool start_is_last_end) {
         // Where the run's first triangle of cell column dc of its patch goes.
         const auto first = [&](int dc) {
           const int slot = ((r % kPatchCells) * kPatchCells + dc) * 2 + upper;
-          return ((r / kPatchCells) * kSlots + slot) * lane_cols() + c / kPatchCells;
+          return rows.Row(r / kPatchCells, slot, c / kPatchCells);
         };
         if (!reuse) StoreNormals(*start_, run, first, &normal_start_);
         StoreNormals(*end_, run, first, &normal_end_);
@@ -187,28 +146,29 @@ void CollisionCulling::StoreNormals(const NodeRows& x, const RunOfCells& run, co
   }
 }
 
-// The cones of a block of kLanes patches, a patch to a lane. A patch's cone is about its mean
+// The cones of a block of kPatchLanes patches, a patch to a lane. A patch's cone is about its mean
 // normal over the step, and holds every triangle's normal n(t) = (1 - t) n0 + t n1 - t (1 - t)
 // du x dv at every moment t of the step, since n(t) . d >= min(n0 . d, n1 . d) - curl / 4 and
 // |n(t)| <= max(|n0|, |n1|) + curl / 4. The least of n(t) . d / |n(t)| over the triangles is
-// the cone's cosine. It is worked out in float, eight patches to a vector: each dot product,
+// the cone's cosine. It is worked out in float, a patch to a lane: each dot product,
 // square root and quotient is off by a few 2^-24 of the ratio's scale (Higham, "Accuracy and
 // Stability of Numerical Algorithms", 3.1), and so are the normals from their rounding and d
 // from a unit vector; kConeRounding, subtracted from the least, is many times all of them.
 void CollisionCulling::PatchCones(int pr, int first_col) {
-  using Lanes = Eigen::Array<float, kLanes, 1>;
+  using Lanes = PatchLanes;
   using Vector = std::array<Lanes, 3>;
-  const auto row_of = [&](int s) { return (pr * kSlots + s) * lane_cols() + first_col; };
+  const SlotRows rows = slot_rows();
+  const auto row_of = [&](int s) { return rows.Row(pr, s, first_col); };
   const auto normal = [&](const NormalRows& normals, int s) {
     Vector n;
-    for (int k = 0; k < 3; ++k) n[k] = normals.col(k).segment<kLanes>(row_of(s));
+    for (int k = 0; k < 3; ++k) n[k] = normals.col(k).segment<kPatchLanes>(row_of(s));
     return n;
   };
   const auto dot = [](const Vector& u, const Vector& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
   // The least each slot's ratio may be: -inf where the lane's patch has a triangle there, else
   // 1, so that an empty slot never lowers the cone.
   std::array<Lanes, kSlots> slot_floor;
-  for (int lane = 0; lane < kLanes; ++lane) {
+  for (int lane = 0; lane < kPatchLanes; ++lane) {
     for (int s = 0; s < kSlots; ++s) {
       const int cell_row = pr * kPatchCells + s / 2 / kPatchCells;
       const int cell_col = (first_col + lane) * kPatchCells + s / 2 % kPatchCells;
@@ -226,16 +186,16 @@ void CollisionCulling::PatchCones(int pr, int first_col) {
   for (int s = 0; s < kSlots; ++s) {
     const Vector n0 = normal(normal_start_, s), n1 = normal(normal_end_, s);
     const Lanes longest = dot(n0, n0).max(dot(n1, n1)).sqrt();
-    const Lanes curl = normal_curl_.segment<kLanes>(row_of(s)) / 4;
+    const Lanes curl = normal_curl_.segment<kPatchLanes>(row_of(s)) / 4;
     const Lanes along = dot(n0, axis).min(dot(n1, axis)) - curl;
     // At most 0 where a normal may turn 90 degrees; the least positive float keeps a degenerate
     // triangle (and an empty slot) from 0 / 0.
     const Lanes ratio = along / (longest + curl + std::numeric_limits<float>::min());
     least = least.min(ratio.max(slot_floor[s]));
   }
-  for (int lane = 0; lane < kLanes && first_col + lane < patch_cols(); ++lane) {
+  for (int lane = 0; lane < kPatchLanes && first_col + lane < patch_cols(); ++lane) {
     const int p = pr * patch_cols() + first_col + lane;
-    NormalCone& cone = region_cone_[leaf_region_[p]];
+    NormalCone& cone = tree_.leaf_cone(p);
     if (length[lane] == 0) {
       cone = {Point::UnitZ()};
       continue;
@@ -250,71 +210,32 @@ void CollisionCulling::PatchCones(int pr, int first_col) {
 }
 
 // Regions' boxes and cones: the leaves from their nodes and triangles (in parallel, a block of
-// patches at a time), then the rest from their halves, which come before them.
+// patches at a time), then the rest from their halves (PatchTree::JoinUpwards).
 void CollisionCulling::RegionBounds() {
-  const std::vector<PatchRegion>& regions = patches_.regions;
-  region_box_.resize(regions.size());
-  region_cone_.resize(regions.size());
-  const int blocks_in_row = lane_cols() / kLanes;
+  const int blocks_in_row = slot_rows().lane_cols / kPatchLanes;
   ParallelFor(patch_rows() * blocks_in_row, threads_, [&](int block) {
-    const int pr = block / blocks_in_row, first_col = block % blocks_in_row * kLanes;
+    const int pr = block / blocks_in_row, first_col = block % blocks_in_row * kPatchLanes;
     PatchCones(pr, first_col);
     const int row_start = pr * patch_cols();
-    for (int p = row_start + first_col; p < row_start + std::min(patch_cols(), first_col + kLanes); ++p) {
-      Box box = Box::Empty();
-      for (int node : patches_.patches[p].nodes) box = box.Joined(node_box_[node]);
-      region_box_[leaf_region_[p]] = box;
+    for (int p = row_start + first_col; p < row_start + std::min(patch_cols(), first_col + kPatchLanes);
+         ++p) {
+      LaneBox box = LaneBox::Empty();
+      for (int node : tree_.patch(p).nodes) box = box.Joined(node_box_[node]);
+      tree_.leaf_box(p) = box;
     }
   });
-  // Level by level up the tree, ConeLanes::kLanes regions at a time.
-  for (size_t level = 0; level + 1 < level_starts_.size(); ++level) {
-    for (int first = level_starts_[level]; first < level_starts_[level + 1]; first += ConeLanes::kLanes) {
-      const int count = std::min(ConeLanes::kLanes, level_starts_[level + 1] - first);
-      ConeLanes left, right;
-      for (int lane = 0; lane < count; ++lane) {
-        const PatchRegion& region = regions[by_level_[first + lane]];
-        left.Set(lane, region_cone_[region.left]);
-        right.Set(lane, region_cone_[region.right]);
-      }
-      const ConeLanes both = ConeLanes::Union(left, right);
-      for (int lane = 0; lane < count; ++lane) {
-        const int r = by_level_[first + lane];
-        region_box_[r] = region_box_[regions[r].left].Joined(region_box_[regions[r].right]);
-        region_cone_[r] = both.Cone(lane);
-      }
-    }
-  }
+  tree_.JoinUpwards();
 }
 
-// A region whose cone is under 90 degrees cannot meet itself; otherwise its halves are
-// examined, each alone and against each other.
-void CollisionCulling::SelfPairs(int r) {
-  const PatchRegion& region = patches_.regions[r];
-  if (region_cone_[r].Narrow()) return;
-  if (region.leaf()) {
-    patch_pairs_.push_back({region.patch, region.patch});
-    return;
-  }
-  SelfPairs(region.left);
-  SelfPairs(region.right);
-  CrossPairs(region.left, region.right);
-}
-
-// Two regions meet only if their boxes overlap, and two that touch only if their cones
-// together reach 90 degrees; the larger is split until both are patches.
-void CollisionCulling::CrossPairs(int a, int b) {
-  const PatchRegion &first = patches_.regions[a], &second = patches_.regions[b];
-  if (!region_box_[a].Overlaps(region_box_[b])) return;
-  if (first.Touches(second) && NormalCone::NarrowTogether(region_cone_[a], region_cone_[b])) return;
-  if (first.leaf() && second.leaf()) {
-    if (!first.Touches(second) && Separated(first.patch, second.patch)) return;
-    patch_pairs_.push_back({std::min(first.patch, second.patch), std::max(first.patch, second.patch)});
-  } else if (!first.leaf() && (second.leaf() || first.size() >= second.size())) {
-    CrossPairs(first.left, b);
-    CrossPairs(first.right, b);
-  } else {
-    CrossPairs(a, second.left);
-    CrossPairs(a, second.right);
+// The pairs of patches the tree's descent reaches (PatchTree::FindPatchPairs), less the pairs
+// of patches apart that a plane parts (Separated), in the order the descent reached them; each
+// pair lower patch first.
+void CollisionCulling::PatchPairs() {
+  tree_.FindPatchPairs(&reached_);
+  patch_pairs_.clear();
+  for (const PatchTree::PatchPair& pair : reached_) {
+    if (!pair.touching && Separated(pair.first, pair.second)) continue;
+    patch_pairs_.push_back({std::min(pair.first, pair.second), std::max(pair.first, pair.second)});
   }
 }
 
@@ -324,30 +245,25 @@ void CollisionCulling::CrossPairs(int a, int b) {
 // cell), else one square to either patch's mean normal (two layers of a fold, one above the
 // other, are parted across it).
 bool CollisionCulling::Separated(int p, int q) const {
-  const ClothPatch &a = patches_.patches[p], &b = patches_.patches[q];
+  const ClothPatch &a = tree_.patch(p), &b = tree_.patch(q);
   const auto centre = [&](const ClothPatch& patch) {
     Point sum = Point::Zero();
     for (int node : patch.nodes) sum += node_path_[node].centre;
     return Point(sum / double(patch.nodes.size()));
   };
-  // The least and the most of axis . x over the patch's nodes' paths, each within its ball.
+  // What the patch's nodes' paths cover along the axis, each within its ball.
   const auto span = [&](const ClothPatch& patch, const Point& axis) {
     const double length = axis.norm();
-    std::pair<double, double> least_most{INFINITY, -INFINITY};
-    for (int node : patch.nodes) {
-      const double middle = axis.dot(node_path_[node].centre), reach = node_path_[node].radius * length;
-      least_most = {std::min(least_most.first, middle - reach), std::max(least_most.second, middle + reach)};
-    }
-    return least_most;
+    AxisSpan covered;
+    for (int node : patch.nodes)
+      covered.Add(axis.dot(node_path_[node].centre), node_path_[node].radius * length);
+    return covered;
   };
   const Point between = centre(b) - centre(a);
-  if (span(b, between).first - span(a, between).second > h_ * between.norm()) return true;
+  if (span(b, between).Beyond(span(a, between), h_ * between.norm())) return true;
   for (int patch : {p, q}) {
-    const Point& normal = region_cone_[leaf_region_[patch]].axis;
-    const auto [a_least, a_most] = span(a, normal);
-    const auto [b_least, b_most] = span(b, normal);
-    const double room = h_ * normal.norm();
-    if (b_least - a_most > room || a_least - b_most > room) return true;
+    const Point& normal = tree_.leaf_cone(patch).axis;
+    if (Apart(span(a, normal), span(b, normal), h_ * normal.norm())) return true;
   }
   return false;
 }
@@ -378,10 +294,10 @@ void CollisionCulling::Candidates() {
 // meets theirs together.
 void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
                                 std::vector<PrimitivePair>* found) const {
-  const ClothPatch &from = patches_.patches[p], &to = patches_.patches[q];
-  const Box& to_box = region_box_[leaf_region_[q]];
-  Box near_box = Box::Empty();  // the near primitives' boxes together: none outside it meets one
-  const auto keep_if_near = [&](int index, const Box& box) {
+  const ClothPatch &from = tree_.patch(p), &to = tree_.patch(q);
+  const LaneBox& to_box = tree_.leaf_box(q);
+  LaneBox near_box = LaneBox::Empty();  // the near primitives' boxes together: none outside it meets one
+  const auto keep_if_near = [&](int index, const LaneBox& box) {
     if (!box.Overlaps(to_box)) return;
     near->push_back({index, box});
     near_box = near_box.Joined(box);
@@ -389,26 +305,26 @@ void CollisionCulling::AddPairs(int p, int q, std::vector<Near>* near,
   near->clear();
   for (int node : from.owned_nodes) keep_if_near(node, node_box_[node]);
   for (int t : near->empty() ? IndexSpan{} : to.triangles) {
-    const Box box = TriangleBox(t);
+    const LaneBox box = TriangleBox(t);
     if (!box.Overlaps(near_box)) continue;
     for (const Near& node : *near) {
       if (!node.box.Overlaps(box) || mesh_.HasCorner(t, node.index)) continue;
       const PrimitivePair pair{false, node.index, t};
-      if (!Parted(pair) && !Immobile(pair)) found->push_back(pair);
+      if (!Parted(pair) && !Immobile(Nodes(pair), *inverse_mass_)) found->push_back(pair);
     }
   }
   if (p > q) return;
   near->clear();
-  near_box = Box::Empty();
+  near_box = LaneBox::Empty();
   for (int e : from.owned_edges) keep_if_near(e, EdgeBox(e));
   for (int f : near->empty() ? IndexSpan{} : to.owned_edges) {
-    const Box box = EdgeBox(f);
+    const LaneBox box = EdgeBox(f);
     if (!box.Overlaps(near_box)) continue;
     for (const Near& edge : *near) {
       const int e = edge.index;
       if ((p == q && f <= e) || !edge.box.Overlaps(box) || mesh_.Adjacent(e, f)) continue;
       const PrimitivePair pair{true, std::min(e, f), std::max(e, f)};
-      if (!Parted(pair) && !Immobile(pair)) found->push_back(pair);
+      if (!Parted(pair) && !Immobile(Nodes(pair), *inverse_mass_)) found->push_back(pair);
     }
   }
 }
@@ -419,13 +335,6 @@ std::array<int, 4> CollisionCulling::Nodes(const PrimitivePair& pair) const {
   }
   const auto [a, b, c] = mesh_.triangles[pair.b];
   return {pair.a, a, b, c};
-}
-
-bool CollisionCulling::Immobile(const PrimitivePair& pair) const {
-  const std::array<int, 4> n = Nodes(pair);
-  const std::vector<double>& inverse_mass = *inverse_mass_;
-  return inverse_mass[n[0]] == 0 && inverse_mass[n[1]] == 0 && inverse_mass[n[2]] == 0 &&
-         inverse_mass[n[3]] == 0;
 }
 
 // Whether a plane parts the pair's two primitives with room for h over the whole step. Along
@@ -439,7 +348,7 @@ bool CollisionCulling::Immobile(const PrimitivePair& pair) const {
 // parted across it, not along it), then the direction square to both edges.
 bool CollisionCulling::Parted(const PrimitivePair& pair) const {
   const std::array<int, 4> n = Nodes(pair);
-  const int split = pair.edges ? 2 : 1;
+  const int split = pair.first_nodes();
   std::array<const NodePath*, 4> path;
   for (int i = 0; i < 4; ++i) path[i] = &node_path_[n[i]];
   const auto centre = [&path](int from, int to) {
@@ -447,15 +356,15 @@ bool CollisionCulling::Parted(const PrimitivePair& pair) const {
     for (int i = from; i < to; ++i) sum += path[i]->centre;
     return Point(sum / double(to - from));
   };
-  // Unnormalised: the spans and the room are all scaled by |axis|.
+  // Whether the second primitive lies beyond the first along `axis` by more than h: one side
+  // only, so an axis that points from the first towards the second can part them and its
+  // opposite cannot. Unnormalised: the spans and the room are all scaled by |axis|.
   const auto parted_along = [&](const Point& axis) {
     const double length = axis.norm();
-    double first_most = -INFINITY, rest_least = INFINITY;
-    for (int i = 0; i < split; ++i)
-      first_most = std::max(first_most, axis.dot(path[i]->centre) + path[i]->radius * length);
-    for (int i = split; i < 4; ++i)
-      rest_least = std::min(rest_least, axis.dot(path[i]->centre) - path[i]->radius * length);
-    return rest_least - first_most > h_ * length;
+    AxisSpan first, rest;
+    for (int i = 0; i < split; ++i) first.Add(axis.dot(path[i]->centre), path[i]->radius * length);
+    for (int i = split; i < 4; ++i) rest.Add(axis.dot(path[i]->centre), path[i]->radius * length);
+    return rest.Beyond(first, h_ * length);
   };
   const Point between = centre(split, 4) - centre(0, split);
   if (parted_along(between)) return true;

@@ -3,13 +3,13 @@
 //
 //   (x0, x1, h) => swept boxes   each node's box over its straight path, grown by h/2
 //               => normals       each triangle's at x0 and x1, and how far it can stray between
-//               => regions       boxes and normal cones of the patch tree (cloth_patches.hpp),
+//               => regions       boxes and normal cones of the patch tree (patch_tree.hpp),
 //                                leaves from their nodes and triangles, the rest from halves
 //               => patch pairs   down the tree: a region whose cone is narrow cannot meet itself,
 //                                two touching regions whose cones together stay narrow cannot
 //                                meet each other, boxes apart cannot meet; two patches apart
 //                                also need no plane across the line between their centres, nor
-//                                square to either's mean normal, to part them
+//                                square to either's mean normal, to part them (axis_span.hpp)
 //               => candidates    in each patch pair, the primitives whose boxes overlap and
 //                                that no plane across the line between them, nor square to the
 //                                triangle's normal or to both edges, parts
@@ -25,9 +25,10 @@
 #include <vector>
 
 #include "server/sim/cloth_mesh.hpp"
-#include "server/sim/cloth_patches.hpp"
-#include "server/sim/collision_geometry.hpp"
-#include "server/sim/normal_cone.hpp"
+#include "server/sim/collision/collision_geometry.hpp"
+#include "server/sim/collision/lane_layout.hpp"
+#include "server/sim/collision/patch_tree.hpp"
+#include "server/sim/collision/primitive_pair.hpp"
 
 namespace flagsim::sim {
 
@@ -36,18 +37,10 @@ using NodeRows = Eigen::Array<double, Eigen::Dynamic, 3>;
 /// Triangle normals in float: x, y, z in columns.
 using NormalRows = Eigen::Array<float, Eigen::Dynamic, 3>;
 
-/// A pair of primitives that may meet: a node and a triangle, or two edges (ClothMesh indices).
-struct PrimitivePair {
-  bool edges = false;  ///< edge-edge; else point-triangle
-  int a = 0, b = 0;    ///< node and triangle, or two edges
-};
-
 class CollisionCulling {
  public:
-  static constexpr int kPatchCells = 2;    ///< cells along a patch's side
-  static constexpr int kNodeBlock = 1024;  ///< nodes a thread takes at a time
-  /// Patches whose cones are worked out together, one to a lane of vector instructions.
-  static constexpr int kLanes = 8;
+  static constexpr int kPatchCells = 2;                         ///< cells along a patch's side
+  static constexpr int kNodeBlock = 1024;                       ///< nodes a thread takes at a time
   static constexpr int kSlots = 2 * kPatchCells * kPatchCells;  ///< triangles a patch has at most
 
   CollisionCulling(int cols, int rows);
@@ -68,18 +61,6 @@ class CollisionCulling {
   const std::vector<std::array<int, 2>>& patch_pairs() const { return patch_pairs_; }
 
  private:
-  /// An axis-aligned box in float, rounded outwards from the double extent it bounds, at half
-  /// the memory: it holds that extent, so a test in float finds every pair the double one
-  /// would, and the few it adds are farther apart than h, which the exact tests reject. Four
-  /// lanes, x, y, z and one that never decides a test, so that each test is a few vector
-  /// instructions.
-  struct Box {
-    Eigen::Array4f lo, hi;
-    static Box Empty() { return {Eigen::Array4f::Constant(INFINITY), Eigen::Array4f::Constant(-INFINITY)}; }
-    Box Joined(const Box& other) const { return {lo.min(other.lo), hi.max(other.hi)}; }
-    /// Each lane of one box reaches the other's: other.hi - lo >= 0 and hi - other.lo >= 0.
-    bool Overlaps(const Box& other) const { return (other.hi - lo).min(hi - other.lo).minCoeff() >= 0; }
-  };
   /// A node's straight path over the step, within the ball of `radius` about `centre`.
   struct NodePath {
     Point centre;
@@ -92,8 +73,8 @@ class CollisionCulling {
   int cell_rows() const { return int(start_->rows()) / cols_ - 1; }  ///< of the step being culled
   int patch_cols() const { return (cell_cols() + kPatchCells - 1) / kPatchCells; }
   int patch_rows() const { return (cell_rows() + kPatchCells - 1) / kPatchCells; }
-  /// Patch columns rounded up to whole blocks of kLanes.
-  int lane_cols() const { return (patch_cols() + kLanes - 1) / kLanes * kLanes; }
+  /// Where each patch's triangle normals wait for PatchCones (lane_layout.hpp).
+  SlotRows slot_rows() const { return {kSlots, LaneColumns(patch_cols())}; }
   void TriangleNormals(bool start_is_last_end);
   /// Cells of a row at a time in TriangleNormals (a multiple of kPatchCells).
   static constexpr int kRun = 64;
@@ -109,31 +90,25 @@ class CollisionCulling {
   void StoreNormals(const NodeRows& x, const RunOfCells& run, const SlotRow& first,
                     NormalRows* normals) const;
   static void Deal(const RunValues& values, int count, int dc, float* to);
-  Box TriangleBox(int triangle) const;
-  Box EdgeBox(int edge) const;
+  LaneBox TriangleBox(int triangle) const;
+  LaneBox EdgeBox(int edge) const;
   /// A primitive of one patch inside another's box, and its own box.
   struct Near {
     int index;
-    Box box;
+    LaneBox box;
   };
-  /// The leaf cones of patch row `pr`'s kLanes patches from column `first_col` on.
+  /// The leaf cones of patch row `pr`'s kPatchLanes patches from column `first_col` on.
   void PatchCones(int pr, int first_col);
   void RegionBounds();
-  void SelfPairs(int region);
-  void CrossPairs(int a, int b);
+  void PatchPairs();
   bool Separated(int p, int q) const;
   void Candidates();
   void AddPairs(int p, int q, std::vector<Near>* near, std::vector<PrimitivePair>* found) const;
-  bool Immobile(const PrimitivePair& pair) const;
   bool Parted(const PrimitivePair& pair) const;
 
   int cols_ = 0;
   ClothMesh mesh_;
-  ClothPatches patches_;
-  std::vector<int> leaf_region_;  ///< each patch's region
-  /// The regions above the leaves, by height over their deepest leaf: those of height k from
-  /// by_level_[level_starts_[k - 1]] on, each with its halves lower down.
-  std::vector<int> by_level_, level_starts_;
+  PatchTree tree_;
 
   // The step being culled (valid during Find).
   const NodeRows* start_ = nullptr;
@@ -142,19 +117,16 @@ class CollisionCulling {
   double h_ = 0;
   int threads_ = 1;
 
-  std::vector<Box> node_box_;            ///< per node, its swept box grown by h/2
-  std::vector<NodePath> node_path_;      ///< per node
-  std::vector<Box> region_box_;          ///< per region, its nodes' swept boxes together
-  std::vector<NormalCone> region_cone_;  ///< per region
-  Eigen::VectorXd moved_by_;             ///< m, per node, |x1 - x0|
+  std::vector<LaneBox> node_box_;    ///< per node, its swept box grown by h/2
+  std::vector<NodePath> node_path_;  ///< per node
+  Eigen::VectorXd moved_by_;         ///< m, per node, |x1 - x0|
   // Per triangle, by patch: its normal (unnormalised, m^2) at the step's start and end, kept in
   // float (collision_culling.cpp says how the cones allow for it), and curl >= |du x dv|, which
   // bounds how far the normal strays between them. A patch's triangles in ClothMesh order fill
-  // its slots 0 to kSlots - 1; slot s of the patch in row pr and column pc is row
-  // (pr kSlots + s) lane_cols() + pc, so the same slot of a row's patches is contiguous. A slot
-  // whose triangle lies past the flag's edge (a patch cut short) stays zero.
+  // its slots 0 to kSlots - 1, in the rows slot_rows() gives (lane_layout.hpp).
   NormalRows normal_start_, normal_end_;
   Eigen::ArrayXf normal_curl_;
+  std::vector<PatchTree::PatchPair> reached_;    ///< the pairs the tree's descent reached
   std::vector<std::array<int, 2>> patch_pairs_;  ///< patches to examine, a patch with itself or another
   std::vector<std::vector<PrimitivePair>> pair_candidates_;  ///< per patch pair, its candidates
   std::vector<std::vector<Near>>

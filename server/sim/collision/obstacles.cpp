@@ -1,4 +1,4 @@
-#include "server/sim/obstacles.hpp"
+#include "server/sim/collision/obstacles.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,13 +1,42 @@
-#include "server/sim/normal_cone.hpp"
+#include "server/sim/collision/normal_cone.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace flagsim::sim {
+#include "server/sim/collision/lane_layout.hpp"
 
-// Angles in cosines and sines: beta between the axes, ta and tb the half-angles. x holds y when
-// beta + ty <= tx: as beta + ty < 270 degrees and tx < 90, cosines decide. The angles add by
-// cos(x + y) = cx cy - sx sy and sin(x + y) = sx cy + cx sy: no inverse trigonometry.
+namespace flagsim::sim {
+namespace {
+
+double HalfAngle(const NormalCone& cone) { return std::atan2(cone.sin_half, cone.cos_half); }
+
+}  // namespace
+
+// Two cones with axes a and b, beta apart, and half-angles ta and tb:
+//   a holds b when beta + tb <= ta, and b holds a when beta + ta <= tb: the union is the wider;
+//   else the union's rim touches both cones' far rims in the plane of the axes: its half-angle
+//   is t = (beta + ta + tb) / 2, and its axis is a turned towards b by t - ta in that plane.
+// Narrow only when t is under 90 degrees (a narrow cone holds no pair of opposite directions).
+// Beta by atan2 of |a x b| and a . b: accurate at every angle, where acos(a . b) loses half the
+// digits of an angle near 0.
+NormalCone NormalCone::UnionByAngles(const NormalCone& a, const NormalCone& b) {
+  const NormalCone open{a.axis};
+  if (!a.Narrow() || !b.Narrow()) return open;
+  const double ta = HalfAngle(a), tb = HalfAngle(b);
+  const double beta = std::atan2(a.axis.cross(b.axis).norm(), a.axis.dot(b.axis));
+  if (beta + tb <= ta) return a;
+  if (beta + ta <= tb) return b;
+  const double t = (beta + ta + tb) / 2;
+  if (t >= M_PI / 2) return open;
+  // The unit vector square to a in the plane of a and b (beta is over 0 here, under 180 degrees).
+  const Point towards_b = (b.axis - a.axis.dot(b.axis) * a.axis).normalized();
+  return {std::cos(t - ta) * a.axis + std::sin(t - ta) * towards_b, std::cos(t), std::sin(t)};
+}
+
+// UnionByAngles' tests in cosines and sines: beta between the axes, ta and tb the half-angles.
+// x holds y when beta + ty <= tx: as beta + ty < 270 degrees and tx < 90, cosines decide. The
+// angles add by cos(x + y) = cx cy - sx sy and sin(x + y) = sx cy + cx sy: no inverse
+// trigonometry.
 //
 // Two narrow cones are narrow together when one holds the other, or else when s = beta + ta + tb
 // is under 180 degrees (sin s > 0).
@@ -26,12 +55,12 @@ NormalCone NormalCone::Union(const NormalCone& a, const NormalCone& b) {
   return ConeLanes::Union(first, second).Cone(0);
 }
 
-// As in NarrowCones: if one cone holds the other, the union is that one; else its half-angle is
-// s / 2, narrow only when s is under 180 degrees, and its axis turns from a's towards b's by
-// s / 2 - ta: it is sin(beta - turn) a + sin(turn) b over sin(beta), its length (as in spherical
-// interpolation). Halved by cos^2(s / 2) = (1 + cos s) / 2: square roots only. Every case is
-// worked out in every lane and the lane's own picked, so that the loop is a run of vector
-// instructions.
+// UnionByAngles in cosines and sines, as in NarrowCones: if one cone holds the other, the union
+// is that one; else its half-angle is s / 2, narrow only when s is under 180 degrees, and its
+// axis turns from a's towards b's by s / 2 - ta: it is sin(beta - turn) a + sin(turn) b over
+// sin(beta), its length (as in spherical interpolation). Halved by cos^2(s / 2) = (1 + cos s) / 2:
+// square roots only. Every case is worked out in every lane and the lane's own picked, so that
+// the loop is a run of vector instructions.
 ConeLanes ConeLanes::Union(const ConeLanes& a, const ConeLanes& b) {
   ConeLanes out;
 #pragma omp simd
