@@ -9,6 +9,24 @@
 #include "server/sim/collision/axis_span.hpp"
 
 namespace flagsim::sim {
+namespace {
+
+// A float at most y, and one at least y (y a double or an Eigen expression of doubles): the
+// bound moved outwards by kRoundingShare of itself and kRoundingLeast before it is rounded
+// (lane_layout.hpp). Here, not in the header, so that the compiler inlines them into the
+// vector loops.
+template <typename Values>
+auto FloatBelow(const Values& y) {
+  return (y - (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
+}
+template <typename Values>
+auto FloatAbove(const Values& y) {
+  return (y + (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
+}
+float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
+float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
+
+}  // namespace
 
 CollisionCulling::CollisionCulling(int cols, int rows)
     : cols_(cols),

@@ -14,7 +14,8 @@
 //                      0, so that an overlap test is a few vector instructions.
 //
 // Float halves the memory of boxes and normals; what it loses is covered by margins that make
-// every float bound conservative: FloatBelow and FloatAbove round a bound outwards, and the
+// every float bound conservative: a bound is moved outwards by kRoundingShare of itself and
+// kRoundingLeast before it is rounded (FloatBelow and FloatAbove, collision_culling.cpp), and the
 // patches' cones are widened by kConeRounding.
 #pragma once
 
@@ -45,19 +46,6 @@ inline constexpr double kRoundingShare = 0x1p-22, kRoundingLeast = 1e-30;
 /// come to some 2^-21 at most (CollisionCulling::PatchCones). On the angle that is at least
 /// 2^-16 rad, more than the unions above the patches lose (normal_cone.hpp).
 inline constexpr double kConeRounding = 0x1p-16;
-
-/// A float at most y, and one at least y (y a double or an Eigen expression of doubles): the
-/// bound moved outwards before it is rounded.
-template <typename Values>
-auto FloatBelow(const Values& y) {
-  return (y - (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
-}
-template <typename Values>
-auto FloatAbove(const Values& y) {
-  return (y + (y.abs() * kRoundingShare + kRoundingLeast)).template cast<float>();
-}
-inline float FloatBelow(double y) { return float(y - (std::abs(y) * kRoundingShare + kRoundingLeast)); }
-inline float FloatAbove(double y) { return float(y + (std::abs(y) * kRoundingShare + kRoundingLeast)); }
 
 // ---- the packings ----------------------------------------------------------------------------
 
@@ -100,8 +88,8 @@ struct SlotRows {
   int Count(int patch_rows) const { return patch_rows * slots * lane_cols; }
 };
 
-/// An axis-aligned box in float, rounded outwards from the double extent it bounds (FloatBelow,
-/// FloatAbove), at half the memory: it holds that extent, so a test in float finds every pair
+/// An axis-aligned box in float, rounded outwards from the double extent it bounds (see above),
+/// at half the memory: it holds that extent, so a test in float finds every pair
 /// the double one would, and the few it adds are farther apart than h, which the exact tests
 /// reject.
 struct LaneBox {
