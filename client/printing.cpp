@@ -65,6 +65,26 @@ void PrintParams(const params_t& params, std::ostream& out) {
   }
 }
 
+namespace {
+
+/// "model:  32 x 24, symplectic_euler, 12 substeps; auto chooses integrator and grid" and auto's
+/// estimate and word.
+void PrintModel(const status_t& status, std::ostream& out) {
+  char text[512];
+  std::snprintf(text, sizeof(text), "model:             %d x %d, %s, %d substeps; auto chooses %s\n", status.cols,
+                status.rows, TerminalText(status.integrator).c_str(), status.substeps,
+                TerminalText(status.model_auto).c_str());
+  out << text;
+  if (status.screen_error_px >= 0) {
+    std::snprintf(text, sizeof(text), "screen_error:      %.2g px estimated, %.2g of real time by the cost model\n",
+                  status.screen_error_px, status.model_cost);
+    out << text;
+  }
+  if (!status.model_note.empty()) out << "auto:              " << TerminalText(status.model_note) << "\n";
+}
+
+}  // namespace
+
 void PrintStatus(const status_t& status, std::ostream& out) {
   char text[4096];
   std::snprintf(text, sizeof(text),
@@ -89,6 +109,7 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 static_cast<long long>(status.commands_rejected),
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;
+  PrintModel(status, out);
   if (!status.last_recovery.empty())
     out << "last recovery:     " << TerminalText(status.last_recovery) << "\n";
   out << "authentication:    " << TerminalText(status.command_authentication) << "\n";

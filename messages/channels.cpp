@@ -19,6 +19,7 @@ Channels::Channels(const std::string& prefix_in)
       status(prefix + "STATUS"),
       timeline(prefix + "TIMELINE"),
       applied(prefix + "APPLIED"),
+      model(prefix + "MODEL"),
       checkpoint(prefix + "CHECKPOINT") {}
 
 std::string Channels::CheckPrefix(const std::string& prefix) {

@@ -36,6 +36,7 @@ struct Channels {
   std::string timeline;  ///< timeline_t
   // server -> clients, for replay
   std::string applied;     ///< applied_command_t
+  std::string model;       ///< model_t: auto's decisions, journaled in APPLIED only
   std::string checkpoint;  ///< checkpoint_t
 
   /// "FLAGSIM_WIND" -> "WIND"; a channel without the prefix comes back unchanged.

@@ -80,6 +80,7 @@ flagsim::Scene BuildScene(const Options& options) {
                                                                       assignment.substr(equals + 1), &scene);
     if (!problem.empty()) throw flagsim::SceneError("--set " + problem);
   }
+  flagsim::ParameterTable::SettleAutoModel(&scene);
   const std::string problem = flagsim::ParameterTable::CheckConsistency(scene);
   if (!problem.empty()) throw flagsim::SceneError(problem);
   return scene;

@@ -18,7 +18,7 @@ int RunReplay(const std::string& path, const ReplayOptions& options) {
   bar.Finish("flagd replay: " + path + ": resumed at step " + std::to_string(report.first_step) + " (" +
              report.first_reason + " checkpoint), replayed to step " + std::to_string(report.last_step) +
              " on " + std::to_string(report.threads) + " thread(s): " + std::to_string(report.commands) +
-             " command(s) applied, " + std::to_string(report.states_checked) + " state and " +
+             " command(s) and " + std::to_string(report.model_switches) + " switch(es) of auto's model applied, " + std::to_string(report.states_checked) + " state and " +
              std::to_string(report.checkpoints_checked) + " checkpoint hash(es) checked");
   std::fprintf(stderr, "flagd replay: the first checkpoint's state hash %016llx",
                static_cast<unsigned long long>(report.first_hash));

@@ -127,7 +127,13 @@ json StatusJson(const status_t& s) {
           {"recoveries", s.recoveries},
           {"last_recovery", s.last_recovery},
           {"server_id", std::to_string(s.server_id)},  // a string: 63 bits do not fit a JavaScript number
-          {"other_servers", s.other_servers}};
+          {"other_servers", s.other_servers},
+          {"cols", s.cols},
+          {"rows", s.rows},
+          {"model_auto", s.model_auto},
+          {"screen_error_px", s.screen_error_px},
+          {"model_cost", s.model_cost},
+          {"model_note", s.model_note}};
 }
 
 json ParameterValue(const parameter_t& parameter) { return ValueOfKind(parameter, parameter.value); }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "server/model/frame_defect.hpp"
 #include "server/model/resolution_error.hpp"
@@ -52,79 +53,130 @@ Probe ProbeMethod(const sim::SimulationSnapshot<float>& snapshot, const render::
   return probe;
 }
 
-bool SameModel(const ModelDecision& a, const sim::SimParams& params) {
-  const bool iterates = a.integrator == sim::IntegratorKind::kXpbd ||
-                        a.integrator == sim::IntegratorKind::kProjectiveDynamics;
-  return a.integrator == params.integrator && a.cols == params.cols && a.rows == params.rows &&
-         (!iterates || a.solver_iterations == params.solver_iterations);
+/// Rows of the ladder's grid of `cols` columns.
+int RowsFor(double rows_per_col, int cols) { return std::max(2, int(std::lround(cols * rows_per_col))); }
+
+/// The snapshot the probes start from: the snapshot itself, or on a grid finer than kProbeCols
+/// the same flag resampled to kProbeCols (a probe costs what its grid costs, and the time error
+/// scales to the other grids by their substeps), stepped on one thread beside the server's.
+sim::SimulationSnapshot<float> ProbeStart(const sim::SimulationSnapshot<float>& snapshot, double rows_per_col) {
+  sim::SimulationSnapshot<float> start = snapshot;
+  start.params.threads = 1;
+  if (snapshot.params.cols <= kProbeCols) return start;
+  sim::Simulation<float> coarse(start);
+  coarse.Regrid(kProbeCols, RowsFor(rows_per_col, kProbeCols));
+  return coarse.Snapshot();
+}
+
+bool Iterates(sim::IntegratorKind kind) {
+  return kind == sim::IntegratorKind::kXpbd || kind == sim::IntegratorKind::kProjectiveDynamics;
+}
+
+bool SameMethod(const Method& a, const Method& b) {
+  return a.integrator == b.integrator && (!Iterates(a.integrator) || a.iterations == b.iterations);
+}
+
+/// What auto estimates of `probe`'s method on a grid of cols x rows (spacing `ratio` times the
+/// grid in force's); none when it would need more substeps than any server keeps up with.
+std::optional<ModelDecision> Estimate(const Probe& probe, const sim::SimParams& now, int cols, int rows, double ratio,
+                                      const ClothOnScreen& cloth, const AutoSettings& settings,
+                                      const CostModel& costs) {
+  ModelDecision d;
+  d.integrator = probe.method.integrator;
+  d.solver_iterations = probe.method.iterations;
+  d.cols = cols;
+  d.rows = rows;
+  sim::SimParams params = now;
+  params.integrator = d.integrator;
+  params.solver_iterations = d.solver_iterations;
+  params.cols = cols;
+  params.rows = rows;
+  params.substeps = 0;
+  // An explicit method's substep follows this grid's stability limit, and its defect the
+  // substep: e ~ h^p. The others take the probe's substeps on any grid, and its defect.
+  const bool explicit_method = Explicit(d.integrator);
+  d.substeps = explicit_method ? sim::SubstepsFor(params) : probe.substeps;
+  if (d.substeps > sim::kMaxSubsteps) return std::nullopt;  // the parameter table's limit
+  d.time_px = explicit_method ? probe.time_px * std::pow(double(probe.substeps) / d.substeps, OrderOf(d.integrator))
+                              : probe.time_px;
+  d.resolution_px = ResolutionErrorPx(cloth, now.width, now.height, cols, rows);
+  d.error_px = d.time_px + d.resolution_px;
+  d.cost = costs.RealTimeFraction(params, d.substeps, settings.collision_passes / ratio);
+  d.changes = !(SameMethod(probe.method, {now.integrator, now.solver_iterations}) && cols == now.cols &&
+                rows == now.rows);
+  return d;
 }
 
 }  // namespace
 
-ModelDecision DecideModel(const sim::SimulationSnapshot<float>& snapshot, const render::Camera& camera,
-                          const AutoSettings& settings, const CostModel& costs) {
+ModelDecisions DecideModels(const sim::SimulationSnapshot<float>& snapshot, const render::Camera& camera,
+                            const AutoSettings& settings, const CostModel& costs) {
   const sim::SimParams& now = snapshot.params;
   const int frame_steps = std::max(1, int(std::lround(1.0 / (30.0 * now.dt))));  // a frame at 30 Hz
   const sim::ClothModel<float> model = sim::BuildClothModel<float>(now);
   const ClothOnScreen cloth = MeasureClothOnScreen(model, snapshot.state, camera);
-  // The methods and grids to weigh.
+  // Every method auto may use, and the one in force, each probed once.
+  const sim::SimulationSnapshot<float> start = ProbeStart(snapshot, settings.rows_per_col);
+  const Method in_force{now.integrator, now.solver_iterations};
   std::vector<Probe> probes;
+  bool in_force_probed = false;
   for (const Method& method : kMethods) {
-    const bool in_force = method.integrator == now.integrator &&
-                          (Explicit(method.integrator) || method.iterations == now.solver_iterations ||
-                           method.integrator == sim::IntegratorKind::kImplicitEuler);
-    if (settings.integrator || in_force) probes.push_back(ProbeMethod(snapshot, camera, method, frame_steps));
+    probes.push_back(ProbeMethod(start, camera, method, frame_steps));
+    in_force_probed |= SameMethod(method, in_force);
   }
-  if (probes.empty()) probes.push_back(ProbeMethod(snapshot, camera, {now.integrator, now.solver_iterations}, frame_steps));
+  if (!in_force_probed) probes.push_back(ProbeMethod(start, camera, in_force, frame_steps));
+  // Every grid of the ladder, and the one in force.
   std::vector<std::pair<int, int>> grids;
-  if (settings.grid) {
-    for (const int cols : kGridLadder) {
-      grids.emplace_back(cols, std::max(2, int(std::lround(double(cols) * (now.rows - 1) / (now.cols - 1)))) );
-    }
-  } else {
+  for (const int cols : kGridLadder) grids.emplace_back(cols, RowsFor(settings.rows_per_col, cols));
+  if (std::find(grids.begin(), grids.end(), std::pair{now.cols, now.rows}) == grids.end()) {
     grids.emplace_back(now.cols, now.rows);
   }
-  // Candidates: every probe on every grid.
+  // Candidates: every probe on every grid; those auto may switch to under `settings`.
   const double spacing_now = Spacing(now, now.cols, now.rows);
-  std::vector<Candidate> candidates;
   std::vector<ModelDecision> decisions;
-  int current = -1;
+  std::vector<Candidate> all, allowed;
+  std::vector<int> allowed_index;  // into decisions
+  int current = -1, current_allowed = -1;
   for (const auto& [cols, rows] : grids) {
     const double ratio = Spacing(now, cols, rows) / spacing_now;  // > 1: coarser
     for (const Probe& probe : probes) {
-      ModelDecision d;
-      d.integrator = probe.method.integrator;
-      d.solver_iterations = probe.method.iterations;
-      d.cols = cols;
-      d.rows = rows;
-      const bool explicit_method = Explicit(d.integrator);
-      d.substeps = explicit_method ? std::max(1, int(std::ceil(probe.substeps / ratio))) : probe.substeps;
-      d.time_px = explicit_method ? probe.time_px * std::pow(ratio, OrderOf(d.integrator)) : probe.time_px;
-      d.resolution_px = ResolutionErrorPx(cloth, now.width, now.height, cols, rows);
-      d.error_px = d.time_px + d.resolution_px;
-      sim::SimParams params = now;
-      params.integrator = d.integrator;
-      params.solver_iterations = d.solver_iterations;
-      params.cols = cols;
-      params.rows = rows;
-      d.cost = costs.RealTimeFraction(params, d.substeps, settings.collision_passes / ratio);
-      d.changes = !SameModel(d, now);
-      if (!d.changes) current = static_cast<int>(decisions.size());
-      candidates.push_back({d.integrator, d.substeps, cols, rows, d.error_px, d.cost});
-      decisions.push_back(d);
+      const std::optional<ModelDecision> d = Estimate(probe, now, cols, rows, ratio, cloth, settings, costs);
+      if (!d) continue;
+      const Candidate candidate{d->integrator, d->substeps, cols, rows, d->error_px, d->cost};
+      const bool same_method = SameMethod(probe.method, in_force);
+      const bool same_grid = cols == now.cols && rows == now.rows;
+      if (same_method && same_grid) current = int(decisions.size());
+      if ((settings.integrator || same_method) && (settings.grid || same_grid)) {
+        if (same_method && same_grid) current_allowed = int(allowed.size());
+        allowed.push_back(candidate);
+        allowed_index.push_back(int(decisions.size()));
+      }
+      all.push_back(candidate);
+      decisions.push_back(*d);
     }
   }
-  const Choice choice = ChooseModel(candidates, settings.budget_px, settings.cost_budget, current, settings.hysteresis);
-  ModelDecision decision = decisions[choice.index];
-  decision.kind = choice.kind;
-  return decision;
+  ModelDecisions result;
+  const auto pick = [&](const std::vector<Candidate>& among, int keep, const std::vector<int>* index) {
+    const Choice choice = ChooseModel(among, settings.budget_px, settings.cost_budget, keep, settings.hysteresis);
+    ModelDecision decision = decisions[index ? (*index)[choice.index] : choice.index];
+    decision.kind = choice.kind;
+    return decision;
+  };
+  result.free = pick(all, current, nullptr);
+  result.chosen = allowed.empty() ? result.free : pick(allowed, current_allowed, &allowed_index);
+  if (current >= 0) result.in_force = decisions[current];
+  result.in_force_estimated = current >= 0;
+  return result;
+}
+
+ModelDecision DecideModel(const sim::SimulationSnapshot<float>& snapshot, const render::Camera& camera,
+                          const AutoSettings& settings, const CostModel& costs) {
+  return DecideModels(snapshot, camera, settings, costs).chosen;
 }
 
 std::string Describe(const ModelDecision& d) {
   char text[200];
-  const bool iterates = d.integrator == sim::IntegratorKind::kXpbd ||
-                        d.integrator == sim::IntegratorKind::kProjectiveDynamics;
-  const std::string iterations = iterates ? " (" + std::to_string(d.solver_iterations) + " iterations)" : "";
+  const std::string iterations = Iterates(d.integrator) ? " (" + std::to_string(d.solver_iterations) + " iterations)" : "";
   std::snprintf(text, sizeof(text), "%s%s at %d x %d, %d substep%s: %.2g px, %.2g of real time",
                 sim::IntegratorName(d.integrator).c_str(), iterations.c_str(), d.cols, d.rows, d.substeps,
                 d.substeps == 1 ? "" : "s", d.error_px, d.cost);

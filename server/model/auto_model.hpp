@@ -7,14 +7,14 @@
 //               integrator auto may use (symplectic Euler, Verlet, RK4, XPBD at 2 and 10
 //               iterations, implicit Euler, projective dynamics at 10), or only the grid or the
 //               integrator in force where the user fixed it;
-//   time error  frame_defect.hpp, measured for each integrator on the grid in force from this
-//               snapshot (a probe: three frame intervals of simulation each); on another grid of
-//               spacing s it scales as (s / s_now)^p for the explicit methods, whose stable substep
-//               follows the spacing, and stays as measured for the unconditionally stable ones,
-//               which take one substep of dt on any grid;
+//   time error  frame_defect.hpp, measured for each integrator from this snapshot (a probe: three
+//               frame intervals of simulation each), on the grid in force or, where that is finer
+//               than kProbeCols columns, on the flag resampled to kProbeCols; on another grid it
+//               scales as (h / h_probe)^p for the explicit methods, whose substep h follows that
+//               grid's stability limit (sim::SubstepsFor), and stays as measured for the
+//               unconditionally stable ones, which take the same substeps on any grid;
 //   resolution  resolution_error.hpp from this state's curvature and scale on screen;
-//   cost        cost_model.hpp at each candidate's substeps (the explicit methods' from their
-//               stability limit on the grid in force, scaled by s_now / s) and self-collision
+//   cost        cost_model.hpp at each candidate's substeps and self-collision
 //               passes (those of the last step, scaled by s_now / s: a pass comes every spacing
 //               the fastest node travels);
 // and the choice is the cheapest within the budget that fits the cost budget, or the most
@@ -34,8 +34,10 @@
 
 namespace flagsim::model {
 
-/// Columns of the grids auto may choose; rows follow the flag's cols : rows.
+/// Columns of the grids auto may choose; rows follow AutoSettings::rows_per_col.
 inline constexpr int kGridLadder[] = {16, 24, 32, 48, 64, 96, 128};
+/// Columns of the grid the integrators are probed on, at most: a finer flag is resampled to it.
+inline constexpr int kProbeCols = 32;
 
 struct AutoSettings {
   bool integrator = true;       ///< auto chooses the integrator (else the snapshot's stays)
@@ -43,7 +45,8 @@ struct AutoSettings {
   double budget_px = 1.0;       ///< screen_error allowed
   double cost_budget = 0.8;     ///< CPU seconds per simulated second the flag may take
   double hysteresis = 0.1;      ///< the model in force is kept within this of the best
-  double collision_passes = 1;  ///< self-collision passes in the last step (0 without)
+  double collision_passes = 1;  ///< self-collision passes per step on the grid in force (0 without)
+  double rows_per_col = 0.75;   ///< the ladder's grids: rows = round(cols * rows_per_col)
 };
 
 /// A model the server can switch to, and what auto estimates of it.
@@ -59,7 +62,20 @@ struct ModelDecision {
   bool changes = false;      ///< differs from the model in force
 };
 
-/// What auto would run from `snapshot` seen by `camera`.
+/// What auto decides from one snapshot.
+struct ModelDecisions {
+  ModelDecision chosen;    ///< among the models `settings` lets auto switch to
+  ModelDecision free;      ///< were auto free to choose the integrator and the grid
+  ModelDecision in_force;  ///< the model in force, as auto estimates it
+  bool in_force_estimated = false;  ///< false: beyond any server (more than sim::kMaxSubsteps)
+};
+
+/// What auto would run from `snapshot` seen by `camera`: the candidates are every method auto
+/// may use and the one in force, on every grid of the ladder and the one in force.
+ModelDecisions DecideModels(const sim::SimulationSnapshot<float>& snapshot, const render::Camera& camera,
+                            const AutoSettings& settings, const CostModel& costs = CostModel::Fitted());
+
+/// DecideModels(...).chosen.
 ModelDecision DecideModel(const sim::SimulationSnapshot<float>& snapshot, const render::Camera& camera,
                           const AutoSettings& settings, const CostModel& costs = CostModel::Fitted());
 

@@ -18,9 +18,9 @@ using sim::ForceCoefficients;
 /// A parameter stored where the member pointers `path` lead from the scene:
 /// scene.*path[0].*path[1]... It is animatable exactly when it is one of the forces'
 /// coefficients, the fields Simulation::SetControls takes in place.
-template <class... Members>
-Parameter Make(std::string name, std::string unit, ParameterKind kind, double min_value, double max_value,
-               std::string description, Members... path) {
+/// A parameter's row without its accessors.
+Parameter Row(std::string name, std::string unit, ParameterKind kind, double min_value, double max_value,
+              std::string description) {
   Parameter parameter;
   parameter.name = std::move(name);
   parameter.unit = std::move(unit);
@@ -28,6 +28,13 @@ Parameter Make(std::string name, std::string unit, ParameterKind kind, double mi
   parameter.min_value = min_value;
   parameter.max_value = max_value;
   parameter.description = std::move(description);
+  return parameter;
+}
+
+template <class... Members>
+Parameter Make(std::string name, std::string unit, ParameterKind kind, double min_value, double max_value,
+               std::string description, Members... path) {
+  Parameter parameter = Row(std::move(name), std::move(unit), kind, min_value, max_value, std::move(description));
   parameter.animatable = (std::is_same_v<Members, double ForceCoefficients::*> || ...);
   parameter.get = [path...](const Scene& scene) { return static_cast<double>((scene.*....*path)); };
   parameter.set = [path...](Scene& scene, double value) {
@@ -60,6 +67,12 @@ Parameter Integer(std::string name, double min_value, double max_value, int SimP
                   std::string description) {
   return Make(std::move(name), "", ParameterKind::kInteger, min_value, max_value, std::move(description),
               &Scene::sim, field);
+}
+
+/// A setting the server may choose: "auto" sets `auto_switch`, a value clears it.
+Parameter Chosen(Parameter parameter, bool ModelSettings::*auto_switch) {
+  parameter.auto_switch = auto_switch;
+  return parameter;
 }
 
 std::string FormatNumber(double value) {
@@ -136,19 +149,24 @@ std::string Parameter::AllowedText() const {
     case ParameterKind::kChoice: {
       std::string text = "one of:";
       for (size_t i = 0; i < choices.size(); ++i) text += (i ? ", " : " ") + choices[i];
-      return text;
+      return text + (auto_switch ? ", auto" : "");
     }
     case ParameterKind::kInteger:
     case ParameterKind::kReal:
       break;
   }
-  return FormatNumber(min_value) + " .. " + FormatNumber(max_value) + (unit.empty() ? "" : " " + unit);
+  return FormatNumber(min_value) + " .. " + FormatNumber(max_value) + (unit.empty() ? "" : " " + unit) +
+         (auto_switch ? ", or auto" : "");
 }
 
 ParameterTable::ParameterTable() {
   parameters_ = {
-      Integer("cols", 2, 512, &SimParams::cols, "nodes along the flag; a change rebuilds the flag"),
-      Integer("rows", 2, 512, &SimParams::rows, "nodes down the flag; a change rebuilds the flag"),
+      Chosen(Integer("cols", 2, 512, &SimParams::cols,
+                     "nodes along the flag; a number rebuilds the flag; auto (or rows=auto): the server "
+                     "chooses the grid for the picture, at the flag's cols : rows"),
+             &ModelSettings::auto_grid),
+      Chosen(Integer("rows", 2, 512, &SimParams::rows, "nodes down the flag; a number rebuilds the flag; auto: as cols"),
+             &ModelSettings::auto_grid),
       Real("width", "m", 0.1, 10, &SimParams::width, "flag length along its rows (fly)"),
       Real("height", "m", 0.1, 10, &SimParams::height, "flag length down its columns (hoist)"),
       Real("mass", "kg", 0.001, 100, &SimParams::mass, "mass of the whole flag"),
@@ -184,8 +202,10 @@ ParameterTable::ParameterTable() {
       Force("gravity", "m/s^2", 0, 100, &ForceCoefficients::gravity, "downward acceleration of gravity"),
       Real("dt", "s", 1e-5, 0.05, &SimParams::dt,
            "step: commands apply between steps; explicit integrators substep for stability"),
-      Make("integrator", "", ParameterKind::kChoice, 0, double(sim::IntegratorNames().size() - 1),
-           "time integrator", &Scene::sim, &SimParams::integrator),
+      Chosen(Make("integrator", "", ParameterKind::kChoice, 0, double(sim::IntegratorNames().size() - 1),
+                  "time integrator; auto: the server chooses it, its substeps and iterations", &Scene::sim,
+                  &SimParams::integrator),
+             &ModelSettings::auto_integrator),
       Integer("substeps", 0, sim::kMaxSubsteps, &SimParams::substeps,
               "substeps per step; 0: chosen from the integrator's stability limit"),
       Integer("solver_iterations", 1, 1000, &SimParams::solver_iterations,
@@ -196,6 +216,18 @@ ParameterTable::ParameterTable() {
               "worker threads for the step and the frames (no more run at once than the machine has "
               "cores, nor in flagd than other processes leave free); the step shares the flag among "
               "them from 4096 nodes a thread"),
+      Make("auto_integrator", "", ParameterKind::kBoolean, 0, 1,
+           "the server chooses the integrator (integrator=auto); a named integrator sets this false",
+           &Scene::model, &ModelSettings::auto_integrator),
+      Make("auto_grid", "", ParameterKind::kBoolean, 0, 1,
+           "the server chooses the grid (cols=auto); a number of cols or rows sets this false", &Scene::model,
+           &ModelSettings::auto_grid),
+      Make("error_budget", "px", ParameterKind::kReal, 0.05, 100,
+           "screen_error auto keeps the flag within, at the camera and image size in force", &Scene::model,
+           &ModelSettings::error_budget),
+      Make("cost_budget", "", ParameterKind::kReal, 0.01, 64,
+           "CPU seconds per simulated second auto may spend stepping the flag (by the cost model; 1: one "
+           "core in real time)", &Scene::model, &ModelSettings::cost_budget),
       Make("state_rate", "Hz", ParameterKind::kReal, 1, 1000, "STATE messages per second of simulated time",
            &Scene::service, &ServiceSettings::state_rate),
       Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120,
@@ -234,6 +266,10 @@ std::string ParameterTable::Assign(const std::string& name, const std::string& t
     for (const Parameter& each : parameters_) known += (known.empty() ? "" : ", ") + each.name;
     return "unknown parameter '" + PrintableText(name) + "'; known: " + known;
   }
+  if (parameter->auto_switch && text == "auto") {
+    scene->model.*parameter->auto_switch = true;
+    return "";
+  }
   double value = 0;
   std::string problem = Parse(*parameter, text, &value);
   if (problem.empty() && (value < parameter->min_value || value > parameter->max_value)) {
@@ -241,7 +277,14 @@ std::string ParameterTable::Assign(const std::string& name, const std::string& t
   }
   if (!problem.empty()) return name + ": " + problem + "; allowed " + parameter->AllowedText();
   parameter->set(*scene, value);
+  if (parameter->auto_switch) scene->model.*parameter->auto_switch = false;
   return "";
+}
+
+void ParameterTable::SettleAutoModel(Scene* scene) {
+  if (scene->model.auto_integrator && sim::SubstepsFor(scene->sim) > sim::kMaxSubsteps) {
+    scene->sim.integrator = sim::IntegratorKind::kXpbd;
+  }
 }
 
 std::string ParameterTable::CheckConsistency(const Scene& scene) {

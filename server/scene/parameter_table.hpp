@@ -20,6 +20,10 @@ struct Parameter {
   double min_value = 0;  ///< inclusive; for kChoice an index range
   double max_value = 0;
   std::vector<std::string> choices;  ///< kChoice: the names, value = index
+  /// Where the server may choose this setting (integrator, cols, rows): the switch that says it
+  /// does. Assign takes "auto" to set the switch, and a value to clear it; the value always holds
+  /// the setting in force, whoever chose it.
+  bool ModelSettings::*auto_switch = nullptr;
   /// Whether a keyframe may set it: a continuous coefficient of the forces, which a step can
   /// change in place (server/scene/scene_timeline.hpp).
   bool animatable = false;
@@ -48,6 +52,11 @@ class ParameterTable {
 
   /// Checks rules that join several parameters. Returns "" or the reason.
   static std::string CheckConsistency(const Scene& scene);
+
+  /// What auto settles at once when the settings change: with integrator=auto, an integrator that
+  /// would need more than sim::kMaxSubsteps substeps gives way to xpbd, stable at any step, until
+  /// auto's next decision (server/service/model_governor.hpp). Call before CheckConsistency.
+  static void SettleAutoModel(Scene* scene);
 
   static constexpr double kMaxWindSpeed = 60.0;  ///< m/s
   static constexpr double kMaxGust = 1.0;        ///< fraction of the wind speed

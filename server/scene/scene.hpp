@@ -19,6 +19,16 @@ struct ServiceSettings {
   render::ShadingMode shading = render::ShadingMode::kGouraud;
 };
 
+/// What the user left to the server's automatic model (server/model/auto_model.hpp): the
+/// integrator (with its iterations), the grid, or both, and the budgets it chooses within. The
+/// SimParams hold the model in force, whoever chose it.
+struct ModelSettings {
+  bool auto_integrator = true;  ///< integrator=auto
+  bool auto_grid = true;        ///< cols=auto (rows=auto): the grid at the flag's cols : rows
+  double error_budget = 1.0;    ///< px of screen_error allowed
+  double cost_budget = 0.8;     ///< CPU seconds per simulated second the flag may take, by the cost model
+};
+
 struct Scene {
   static constexpr double kMaxSettle = 60;  ///< s
 
@@ -32,6 +42,7 @@ struct Scene {
   sim::SimParams sim;
   sim::WindSettings wind;
   ServiceSettings service;
+  ModelSettings model;
   render::Camera camera;   ///< where frames are seen from, and their size
   sim::Timeline timeline;  ///< keyframes driving wind, parameters and camera; empty by default
 };

@@ -297,6 +297,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
           "'; known: name, description, seed, settle, [parameters], [wind], [camera], [timeline]");
     }
   }
+  ParameterTable::SettleAutoModel(&scene);
   std::string problem = ParameterTable::CheckConsistency(scene);
   if (!problem.empty()) throw SceneError(source + ": " + problem);
   problem = CheckTimeline(scene.timeline, scene);

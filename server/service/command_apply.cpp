@@ -1,7 +1,11 @@
 #include "server/service/command_apply.hpp"
 
+#include <algorithm>
+
+#include "common/printable_text.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "messages/checked_decode.hpp"
+#include "server/sim/integrator.hpp"
 #include "server/scene/scene_timeline.hpp"
 
 namespace flagsim {
@@ -140,6 +144,35 @@ std::string KeyOf(const timeline_key_t& message, bool law, sim::Keyframe* key) {
   return "";
 }
 
+std::string ModelSwitchOf(const model_t& message, ModelSwitch* model) {
+  const std::vector<std::string>& names = sim::IntegratorNames();
+  const auto name = std::find(names.begin(), names.end(), message.integrator);
+  if (name == names.end()) {
+    return "integrator: '" + PrintableText(message.integrator) + "' is not an integrator";
+  }
+  model->integrator = static_cast<sim::IntegratorKind>(name - names.begin());
+  model->solver_iterations = message.solver_iterations;
+  model->cols = message.cols;
+  model->rows = message.rows;
+  return "";
+}
+
+model_t ModelMessageOf(const model::ModelDecision& decision, int64_t utime) {
+  model_t message{};
+  message.utime = utime;
+  message.integrator = sim::IntegratorName(decision.integrator);
+  message.solver_iterations = decision.solver_iterations;
+  message.cols = decision.cols;
+  message.rows = decision.rows;
+  message.substeps = decision.substeps;
+  message.error_px = decision.error_px;
+  message.time_error_px = decision.time_px;
+  message.resolution_error_px = decision.resolution_px;
+  message.cost = decision.cost;
+  message.choice = model::Describe(decision.kind);
+  return message;
+}
+
 std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint8_t>& data,
                               Session* session) {
   if (channel == "WIND") {
@@ -160,8 +193,15 @@ std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint
       return problem.empty() ? session->ApplyTimeline(edit) : problem;
     });
   }
+  if (channel == "MODEL") {
+    return DecodeAndApply<model_t>(data, [&](const auto& c) {
+      ModelSwitch model;
+      const std::string problem = ModelSwitchOf(c, &model);
+      return problem.empty() ? session->ApplyModel(model) : problem;
+    });
+  }
   if (channel == "REFRESH") return DecodeAndApply<refresh_request_t>(data, [](const auto&) { return ""; });
-  return "channel " + channel + ": not a command channel; allowed WIND, PARAM, CAMERA, KEYFRAME, REFRESH";
+  return "channel " + channel + ": not a command channel; allowed WIND, PARAM, CAMERA, KEYFRAME, MODEL, REFRESH";
 }
 
 }  // namespace flagsim

@@ -8,11 +8,17 @@ FrameInput FrameInput::Of(const Session& session, int64_t utime) {
   const auto& state = session.simulation().state();
   const auto& model = session.simulation().model();
   FrameInput input;
-  input.cols = model.cols;
-  input.rows = model.rows;
-  input.x = state.x;
-  input.y = state.y;
-  input.z = state.z;
+  if (const Geomorph* morph = session.geomorph()) {  // just coarsened: the finer grid, fading
+    input.cols = morph->cols();
+    input.rows = morph->rows();
+    morph->Draw(model, state, &input.x, &input.y, &input.z);
+  } else {
+    input.cols = model.cols;
+    input.rows = model.rows;
+    input.x = state.x;
+    input.y = state.y;
+    input.z = state.z;
+  }
   input.camera = session.scene().camera;
   input.shading = session.scene().service.shading;
   input.pole_height = session.scene().sim.pole_height;

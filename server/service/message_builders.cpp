@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "server/scene/parameter_table.hpp"
 #include "server/service/command_authenticator.hpp"
@@ -150,6 +151,58 @@ status_t MakeStatusMessage(const Session& session, const ServerStats& stats, con
   message.recoveries = simulation.recoveries();
   message.last_recovery = simulation.last_guard_event().Describe();
   return message;
+}
+
+}  // namespace flagsim
+
+namespace flagsim {
+namespace {
+
+std::string AutoChooses(const ModelSettings& model) {
+  if (model.auto_integrator && model.auto_grid) return "integrator and grid";
+  if (model.auto_integrator) return "integrator";
+  if (model.auto_grid) return "grid";
+  return "nothing";
+}
+
+std::string Number(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+}  // namespace
+
+// auto everywhere: its choice and why. Set by the user: whether real time holds, and what auto
+// would choose.
+void WriteModelStatus(const Session& session, const std::optional<model::ModelDecisions>& decisions,
+                      status_t* message) {
+  const Scene& scene = session.scene();
+  message->cols = scene.sim.cols;
+  message->rows = scene.sim.rows;
+  message->model_auto = AutoChooses(scene.model);
+  message->screen_error_px = -1;
+  message->model_cost = -1;
+  message->model_note = "";
+  if (decisions && decisions->in_force_estimated) {
+    message->screen_error_px = decisions->in_force.error_px;
+    message->model_cost = decisions->in_force.cost;
+  }
+  const bool all_auto = scene.model.auto_integrator && scene.model.auto_grid;
+  const bool behind = !message->sleeping && message->real_time_factor > 0 && message->real_time_factor < 0.99;
+  std::string note;
+  if (!decisions) {
+    note = "auto has not decided yet";
+  } else if (all_auto) {
+    note = "auto: " + model::Describe(decisions->chosen.kind) + " of " +
+           Number("%g", scene.model.error_budget) + " px";
+  } else {
+    note = "set by the user: " + std::string(scene.model.auto_integrator ? "the grid" :
+                                             scene.model.auto_grid ? "the integrator" : "the integrator and the grid") +
+           "; auto would choose " + model::Describe(decisions->free);
+  }
+  if (behind) note += "; real time not held: " + Number("%.2f", message->real_time_factor) + " of real time";
+  message->model_note = note;
 }
 
 }  // namespace flagsim

@@ -11,6 +11,7 @@
 #include "flagsim/state_t.hpp"
 #include "flagsim/status_t.hpp"
 #include "flagsim/timeline_t.hpp"
+#include "server/model/auto_model.hpp"
 #include "server/service/server_stats.hpp"
 #include "server/service/session.hpp"
 #include "server/service/tile_stream.hpp"
@@ -70,5 +71,10 @@ struct StatusWindow {
 /// Health over the window: rates, mean times, counters.
 status_t MakeStatusMessage(const Session& session, const ServerStats& stats, const StatusWindow& window,
                            int64_t utime);
+
+/// STATUS's model fields from auto's last decisions (none before the first) and the real-time
+/// factor the message reports.
+void WriteModelStatus(const Session& session, const std::optional<model::ModelDecisions>& decisions,
+                      status_t* message);
 
 }  // namespace flagsim

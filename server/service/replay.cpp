@@ -136,7 +136,7 @@ bool Replayer::Apply(const applied_command_t& command) {
                                     std::to_string(session_->simulation().state().step));
   }
   if (!AdvanceTo(command.step, channels_.applied)) return false;
-  ++report_.commands;
+  ++(command.channel == "MODEL" ? report_.model_switches : report_.commands);
   const std::string problem = ApplyCommandBytes(command.channel, command.data, session_.get());
   if (problem.empty()) return true;
   return Differ(command.step, command.channel + " at step " + std::to_string(command.step) +

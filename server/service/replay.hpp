@@ -30,7 +30,8 @@ struct ReplayReport {
   uint64_t last_checkpoint_hash = 0;  ///< its recorded state hash
   int64_t last_step = -1;      ///< the last step replayed to
   int threads = 0;             ///< replayed on
-  int64_t commands = 0;        ///< APPLIED commands applied
+  int64_t commands = 0;        ///< APPLIED commands applied, auto's decisions apart
+  int64_t model_switches = 0;  ///< APPLIED decisions of auto (MODEL) applied
   int64_t states_checked = 0;  ///< STATE hashes compared
   int64_t checkpoints_checked = 0;
   int64_t skipped = 0;  ///< hashes of steps before where the replay stood (not comparable)

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <utility>
 
+#include <spdlog/spdlog.h>
+
 #include "messages/utime.hpp"
+#include "server/service/command_apply.hpp"
 #include "server/service/message_builders.hpp"
 
 namespace flagsim {
@@ -127,6 +130,7 @@ void Server::AfterStep() {
 void Server::AtBoundary() {
   if (inputs_) inputs_->AdvanceTo(session_.simulation().state().time);
   journal_.AtBoundary(session_, UnixMicros());
+  if (const auto decision = governor_.AtBoundary(session_)) SwitchModel(*decision);
   const BoundaryDue due = schedule_.At(session_);
   if (due.state) PublishState();
   if (due.frame) {
@@ -134,6 +138,26 @@ void Server::AtBoundary() {
     frame_due_ = true;
     FrameDue();  // at its own step, not after the batch: the stage takes a copy and the loop goes on
   }
+}
+
+// decision => MODEL bytes => the session, and the journal as a command from "auto"
+void Server::SwitchModel(const model::ModelDecision& decision) {
+  const int64_t utime = UnixMicros();
+  const model_t message = ModelMessageOf(decision, utime);
+  std::vector<uint8_t> bytes(size_t(message.getEncodedSize()));
+  message.encode(bytes.data(), 0, int(bytes.size()));
+  ModelSwitch model;
+  std::string problem = ModelSwitchOf(message, &model);
+  if (problem.empty()) problem = session_.ApplyModel(model);
+  if (!problem.empty()) {
+    spdlog::warn("auto's decision {} was not taken: {}", model::Describe(decision), problem);
+    return;
+  }
+  journal_.Applied(session_, channels_.model, bytes.data(), bytes.size(), {"auto", ""}, utime);
+  governor_.Switched(session_);
+  integrator_replaced_ = true;  // PARAMS is due
+  spdlog::info("auto at step {}: {} ({})", session_.simulation().state().step, model::Describe(decision),
+               model::Describe(decision.kind));
 }
 
 void Server::PublishDue(double now) {
@@ -254,6 +278,7 @@ void Server::PublishStatus(double now) {
   status.server_id = presence_.id();
   status.other_servers = presence_.others();
   status.command_authentication = intake_.Authentication();
+  WriteModelStatus(session_, governor_.last(), &status);
   // Into the inputs log too: where the server stood each second, for a resume to say what it lost.
   (inputs_ ? static_cast<Publisher&>(*inputs_) : bus_).Publish(channels_.status, status);
   last_status_ = status;

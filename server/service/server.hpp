@@ -41,6 +41,7 @@
 #include "server/service/frame_stage.hpp"
 #include "server/service/inputs_log.hpp"
 #include "server/service/journal.hpp"
+#include "server/service/model_governor.hpp"
 #include "server/service/paced_publisher.hpp"
 #include "server/service/server_presence.hpp"
 #include "server/service/server_stats.hpp"
@@ -98,6 +99,7 @@ class Server {
   void StepDue(double now);
   void AfterStep();
   void AtBoundary();
+  void SwitchModel(const model::ModelDecision& decision);
   void PublishDue(double now);
   int64_t TakeKeyframeRequest(double now);
   bool KeyframeDue(double now) const;
@@ -119,6 +121,7 @@ class Server {
   ServerPresence presence_;            ///< this server's id, and the others heard on the prefix
   std::unique_ptr<InputsLog> inputs_;  ///< null unless recording its inputs
   Journal journal_;
+  ModelGovernor governor_;
   CommandIntake intake_;
   PacedPublisher paced_;
   FrameStage frames_;  ///< after paced_: it publishes through it, so it must stop first

@@ -156,6 +156,7 @@ std::string Session::ApplyParams(const ParamChange& change) {
     const std::string problem = ParameterTable::Get().Assign(name, value, &next);
     if (!problem.empty()) problems += (problems.empty() ? "" : "; ") + problem;
   }
+  ParameterTable::SettleAutoModel(&next);
   if (problems.empty()) problems = ParameterTable::CheckConsistency(next);
   if (problems.empty() && !change.reset_to_scene) {  // the keys must suit the new settings too
     const std::string problem = CheckTimeline(next.timeline, next);
@@ -166,6 +167,7 @@ std::string Session::ApplyParams(const ParamChange& change) {
   scene_ = next;
   simulation_.SetParams(scene_.sim);
   substeps_segment_ = kNoSegment;  // SetParams chose substeps for the settings as they are
+  geomorph_.reset();
   if (change.reset_to_scene) {
     sim::WindSettings wind = scene_.wind;
     wind.ramp_time = 0;  // back to the scene's wind at once
@@ -178,6 +180,59 @@ std::string Session::ApplyParams(const ParamChange& change) {
   }
   ++revision_;
   return "";
+}
+
+std::string Session::ApplyModel(const ModelSwitch& model) {
+  const int kinds = int(sim::IntegratorNames().size());
+  if (int(model.integrator) < 0 || int(model.integrator) >= kinds) {
+    return "integrator: " + std::to_string(int(model.integrator)) + " is not an integrator; allowed 0 .. " +
+           std::to_string(kinds - 1);
+  }
+  if (!scene_.model.auto_integrator && !scene_.model.auto_grid) {
+    return "model: integrator and grid are both set; auto chooses neither (integrator=auto, cols=auto)";
+  }
+  Scene next = scene_;
+  if (next.model.auto_integrator) {
+    next.sim.integrator = model.integrator;
+    next.sim.solver_iterations = model.solver_iterations;
+  }
+  if (next.model.auto_grid) {
+    next.sim.cols = model.cols;
+    next.sim.rows = model.rows;
+  }
+  // Each value as the parameter table allows it.
+  for (const char* name : {"cols", "rows", "solver_iterations"}) {
+    const Parameter& parameter = *ParameterTable::Get().Find(name);
+    const double value = parameter.get(next);
+    if (value < parameter.min_value || value > parameter.max_value) {
+      return std::string(name) + ": " + parameter.Format(value) + " is out of range; allowed " +
+             parameter.Format(parameter.min_value) + " .. " + parameter.Format(parameter.max_value);
+    }
+  }
+  const std::string problem = ParameterTable::CheckConsistency(next);
+  if (!problem.empty()) return problem;
+
+  const bool regrid = next.sim.cols != scene_.sim.cols || next.sim.rows != scene_.sim.rows;
+  const bool coarser = regrid && next.sim.cols * next.sim.rows < scene_.sim.cols * scene_.sim.rows;
+  sim::ClothModel<float> fine;
+  sim::ClothState<float> fine_state;
+  if (coarser) {
+    fine = simulation_.model();
+    fine_state = simulation_.state();
+  }
+  scene_ = next;
+  if (regrid) simulation_.Regrid(scene_.sim.cols, scene_.sim.rows);
+  simulation_.SetParams(scene_.sim);
+  substeps_segment_ = kNoSegment;  // SetParams chose substeps for the model as it is
+  geomorph_.reset();
+  if (coarser) geomorph_.emplace(fine, fine_state, simulation_.model(), simulation_.state());
+  ++revision_;
+  return "";
+}
+
+const Geomorph* Session::geomorph() const {
+  if (!geomorph_ || !geomorph_->Blends(simulation_.model(), simulation_.state().time)) return nullptr;
+  return &*geomorph_;
 }
 
 bool Session::Step() {

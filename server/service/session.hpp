@@ -15,12 +15,14 @@
 // bit for bit, at any thread count.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "server/render/camera_moves.hpp"
 #include "server/scene/scene.hpp"
+#include "server/service/geomorph.hpp"
 #include "server/sim/simulation.hpp"
 
 namespace flagsim {
@@ -46,6 +48,13 @@ struct TimelineEdit {
   sim::Keyframe key;
 };
 
+/// A decision of auto (MODEL, model_governor.hpp): the model to switch to.
+struct ModelSwitch {
+  sim::IntegratorKind integrator = sim::IntegratorKind::kSymplecticEuler;
+  int solver_iterations = 10;
+  int cols = 32, rows = 24;
+};
+
 /// A session at a step boundary (Session::Snapshot): all its next steps depend on.
 struct SessionSnapshot {
   Scene initial;  ///< the scene it started from
@@ -68,6 +77,16 @@ class Session {
   std::string ApplyWind(const sim::WindSettings& wind);
   /// Applies parameter assignments as one change; returns "" or every reason it was rejected.
   std::string ApplyParams(const ParamChange& change);
+
+  /// Switches to auto's decision where auto is on: the integrator and its iterations under
+  /// integrator=auto, the grid under cols=auto. "" or why not (then nothing changed). A grid
+  /// change keeps the motion (Simulation::Regrid); after a coarsening, frames fade out the finer
+  /// grid's wrinkles (geomorph.hpp).
+  std::string ApplyModel(const ModelSwitch& model);
+
+  /// The blend from a finer grid while it lasts (Geomorph::Blends), else null. Frames only: a
+  /// checkpoint does not carry it.
+  const Geomorph* geomorph() const;
 
   /// Applies a camera move (kReset: back to the scene's camera); "" or why it was rejected.
   std::string ApplyCamera(const render::CameraMove& move);
@@ -102,6 +121,7 @@ class Session {
   Scene scene_;
   FlagSimulation simulation_;
   int64_t revision_ = 0;
+  std::optional<Geomorph> geomorph_;
   int substeps_segment_ = kNoSegment;  ///< the timeline segment the substeps were fixed for
   bool substeps_fixed_ = false;        ///< by the timeline, not by the simulation's own choice
 };

@@ -56,12 +56,33 @@ TEST(PrintStatus, ControlCharactersFromTheBusAreEscaped) {
   status.integrator = "xpbd\x1b[1A";
   status.last_recovery = "at step 3\x1b[2K";
   status.command_authentication = "none\x1b[31m";
+  status.model_note = "auto\x1b[0m";
   std::ostringstream out;
   PrintStatus(status, out);
   EXPECT_EQ(out.str().find('\x1b'), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("xpbd\\x1b[1A"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("at step 3\\x1b[2K"), std::string::npos) << out.str();
   EXPECT_NE(out.str().find("none\\x1b[31m"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("auto\\x1b[0m"), std::string::npos) << out.str();
+}
+
+TEST(PrintStatus, TheModelInForceAndAutosWord) {
+  status_t status{};
+  status.cols = 48;
+  status.rows = 36;
+  status.integrator = "xpbd";
+  status.substeps = 1;
+  status.model_auto = "integrator and grid";
+  status.screen_error_px = 0.62;
+  status.model_cost = 0.21;
+  status.model_note = "auto: within the budget of 1 px";
+  std::ostringstream out;
+  PrintStatus(status, out);
+  EXPECT_NE(out.str().find("model:             48 x 36, xpbd, 1 substeps; auto chooses integrator and grid"),
+            std::string::npos)
+      << out.str();
+  EXPECT_NE(out.str().find("screen_error:      0.62 px estimated, 0.21 of real time"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("auto:              auto: within the budget of 1 px"), std::string::npos) << out.str();
 }
 
 TEST(PrintTimeline, ControlCharactersFromTheBusAreEscaped) {

@@ -11,6 +11,7 @@
 #include "client/command_client.hpp"
 #include "server/scene/parameter_table.hpp"
 #include "server/service/server.hpp"
+#include "tests/service/fixed_model.hpp"
 #include "tests/service/simulated_clock.hpp"
 
 namespace flagsim {
@@ -22,7 +23,7 @@ class CommandIntakeTest : public ::testing::Test {
   // CommandIntake::kSettleSteps steps under them.
   CommandIntakeTest()
       : bus_("memq://"),
-        server_(bus_, channels_, Scene{}, clock_.ServerOnIt()),
+        server_(bus_, channels_, testing::FixedModel(Scene{}), clock_.ServerOnIt()),
         client_(bus_, channels_, 5.0, {}, clock_.Reader()) {
     client_.WhileWaiting([this] { clock_.Step(server_); });
   }

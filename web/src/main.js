@@ -136,6 +136,7 @@ function onJsonMessage(page, parts, topic, message) {
       break;
     case "/flag/status":
       page.status = message;
+      parts.statusBar.setModel(message);
       parts.plots.addStatus(message, page.view.shownFps());
       break;
     case "/flag/params":

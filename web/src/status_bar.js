@@ -1,17 +1,19 @@
-// The status bar: connection, server, frame id, frames shown per second, hash ok, last ACK.
+// The status bar: connection, server, the model of the flag, frame id, frames shown per second,
+// hash ok, last ACK.
 //
-//   connection state, serverInfo, each frame shown, /flag/acks --> one line of fields
+//   connection state, serverInfo, /flag/status, each frame shown, /flag/acks --> one line of fields
 import { el, formatNumber } from "./dom.js";
 
 export class StatusBar {
   constructor(container) {
     this.connection = el("span", { class: "field connection disconnected" }, "connecting …");
     this.server = el("span", { class: "field server" }, "–");
+    this.model = el("span", { class: "field model" }, "model –");
     this.frame = el("span", { class: "field frame" }, "frame –");
     this.fps = el("span", { class: "field fps" }, "– fps");
     this.hash = el("span", { class: "field hash" }, "hash –");
     this.ack = el("span", { class: "field ack" }, "no ACK yet");
-    container.append(this.connection, this.server, this.frame, this.fps, this.hash, this.ack);
+    container.append(this.connection, this.server, this.model, this.frame, this.fps, this.hash, this.ack);
   }
 
   setConnection(connected, text) {
@@ -22,6 +24,19 @@ export class StatusBar {
   setServer(name) {
     this.server.textContent = name || "–";
     this.server.title = "the gateway's serverInfo name";
+  }
+
+  /// The model in force from a flagsim.Status: grid, integrator, substeps, auto's estimate of
+  /// screen_error and the cost as a fraction of real time; auto's word in the tooltip.
+  setModel(status) {
+    const chooser = status.model_auto === "nothing" ? "set" : `auto: ${status.model_auto}`;
+    const estimate = status.screen_error_px >= 0
+      ? ` · ${formatNumber(status.screen_error_px, 2)} px · ${formatNumber(status.model_cost, 2)} of real time`
+      : "";
+    this.model.textContent =
+      `${status.cols}×${status.rows} ${status.integrator} ×${status.substeps}${estimate} (${chooser})`;
+    this.model.title = status.model_note ?? "";
+    this.model.className = `field model ${/real time not held/.test(status.model_note ?? "") ? "bad" : ""}`;
   }
 
   /// The frame shown: its id, size, step and whether its hash checked.
