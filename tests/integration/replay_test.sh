@@ -63,7 +63,7 @@ echo "-- replayed from the start"
 expect 0 "flagd replay, 1 thread" "$flagd" replay "$work/full.lcmlog" --prefix $prefix --threads 1
 contains "every hash equal" "  every recorded hash equal"
 matches "resumed at step [0-9]+ \((start|refresh) checkpoint\)" "  from the log's first checkpoint"
-matches " 11 command\(s\) applied" "  with the session's eleven commands (a refresh changes nothing)"
+matches " 11 command\(s\) and [0-9]+ switch\(es\) of auto.s model applied" "  with the session's eleven commands (a refresh changes nothing)"
 expect 0 "flagd replay, 2 threads" "$flagd" replay "$work/full.lcmlog" --prefix $prefix --threads 2
 contains "every hash equal" "  every recorded hash equal"
 
@@ -75,7 +75,7 @@ contains "every hash equal" "  every recorded hash equal"
 echo "-- the server's own record of its inputs (--record-inputs)"
 expect 0 "flagd replay of the inputs log" "$flagd" replay "$work/inputs.lcmlog" --prefix $prefix
 contains "resumed at step 0 (start checkpoint)" "  from the session's start"
-matches " ([89]|[1-9][0-9]+) command\(s\) applied, 0 state and [1-9][0-9]* checkpoint" \
+matches " ([89]|[1-9][0-9]+) command\(s\) and [0-9]+ switch\(es\) of auto.s model applied, 0 state and [1-9][0-9]* checkpoint" \
   "  with the session's commands, checked at its checkpoints"
 contains "every hash equal" "  every checkpoint hash equal"
 

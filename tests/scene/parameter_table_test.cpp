@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace flagsim {
 namespace {
@@ -138,6 +139,52 @@ TEST(ParameterTable, WindChecksNameTheField) {
   EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{1, 0, 0}, 1.5, 0}).rfind("gust:", 0), 0u);
   EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{1, 0, 0}, 0, -1}).rfind("ramp_time:", 0), 0u);
   EXPECT_EQ(ParameterTable::CheckWind(sim::WindSettings{{1, 0, 0}, 0, inf}).rfind("ramp_time:", 0), 0u);
+}
+
+}  // namespace
+}  // namespace flagsim
+
+namespace flagsim {
+namespace {
+
+// auto is the default; a value fixes the setting and keeps the other; auto gives it back, and the
+// value goes on holding the setting in force.
+TEST(ParameterTable, AutoIsASwitchBesideTheSettingInForce) {
+  const ParameterTable& table = ParameterTable::Get();
+  Scene scene;
+  EXPECT_TRUE(scene.model.auto_integrator);
+  EXPECT_TRUE(scene.model.auto_grid);
+  ASSERT_EQ(table.Assign("integrator", "rk4", &scene), "");
+  EXPECT_FALSE(scene.model.auto_integrator);
+  EXPECT_TRUE(scene.model.auto_grid);
+  ASSERT_EQ(table.Assign("cols", "64", &scene), "");
+  EXPECT_FALSE(scene.model.auto_grid);
+  EXPECT_EQ(scene.sim.rows, 24);  // the other size stays as it stands
+  ASSERT_EQ(table.Assign("rows", "auto", &scene), "");
+  EXPECT_TRUE(scene.model.auto_grid);
+  EXPECT_EQ(scene.sim.cols, 64);
+  ASSERT_EQ(table.Assign("integrator", "auto", &scene), "");
+  EXPECT_TRUE(scene.model.auto_integrator);
+  EXPECT_EQ(scene.sim.integrator, sim::IntegratorKind::kRk4);
+  EXPECT_EQ(table.Find("integrator")->AllowedText().find(", auto"), table.Find("integrator")->AllowedText().size() - 6);
+  EXPECT_NE(table.Assign("cols", "automatic", &scene).find("allowed 2 .. 512, or auto"), std::string::npos);
+  EXPECT_NE(table.Assign("threads", "auto", &scene).find("'auto' is not an integer"), std::string::npos);
+}
+
+// With integrator=auto, settings no explicit integrator can step in time get xpbd at once; set
+// by the user, the explicit one is refused with the reason.
+TEST(ParameterTable, AutoSettlesOnAStableIntegratorWhereAnExplicitOneCannotKeepUp) {
+  Scene scene;  // 128 x 96, stiff, in long steps: symplectic Euler would need 7616 substeps a step
+  for (const auto& [name, value] : {std::pair{"cols", "128"}, {"rows", "96"}, {"stiffness", "100000"},
+                                    {"bending_stiffness", "1"}, {"dt", "0.05"}}) {
+    ASSERT_EQ(ParameterTable::Get().Assign(name, value, &scene), "");
+  }
+  Scene set_by_user = scene;
+  ASSERT_EQ(ParameterTable::Get().Assign("integrator", "symplectic_euler", &set_by_user), "");
+  EXPECT_NE(ParameterTable::CheckConsistency(set_by_user).find("substeps"), std::string::npos);
+  ParameterTable::SettleAutoModel(&scene);
+  EXPECT_EQ(scene.sim.integrator, sim::IntegratorKind::kXpbd);
+  EXPECT_EQ(ParameterTable::CheckConsistency(scene), "");
 }
 
 }  // namespace
