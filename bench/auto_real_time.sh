@@ -50,9 +50,9 @@ for scene in $scenes; do
     server=$!
     pids+=($server)
     sleep 3
-    "$flagctl" --timeout 5 status >"$work/first"
+    "$flagctl" --timeout 10 status >"$work/first" || true
     sleep "$seconds"
-    "$flagctl" --timeout 5 status >"$work/last"
+    "$flagctl" --timeout 10 status >"$work/last" || true
     kill "$server"; wait "$server" 2>/dev/null || true
     rtf=$(awk -v s0="$(sim_time "$work/first")" -v s1="$(sim_time "$work/last")" \
       -v u0="$(uptime "$work/first")" -v u1="$(uptime "$work/last")" \

@@ -16,10 +16,15 @@ struct Method {
   sim::IntegratorKind integrator;
   int iterations;
 };
-constexpr Method kMethods[] = {{sim::IntegratorKind::kSymplecticEuler, 10}, {sim::IntegratorKind::kVelocityVerlet, 10},
-                               {sim::IntegratorKind::kRk4, 10},             {sim::IntegratorKind::kXpbd, 2},
-                               {sim::IntegratorKind::kXpbd, 10},            {sim::IntegratorKind::kImplicitEuler, 10},
-                               {sim::IntegratorKind::kProjectiveDynamics, 10}};
+// Implicit Euler and projective dynamics are left out: by the cost model they take 4.85 and
+// 3.2 us a node-step (docs/lab/cost-model.txt), 0.47 and 0.30 of a core at 16 x 12 and beyond
+// real time from 48 x 36, and no view of the presets had them chosen (docs/lab/auto.csv); their
+// probes were two thirds of a decision's time.
+constexpr Method kMethods[] = {{sim::IntegratorKind::kSymplecticEuler, 10},  // first: ExplicitSubsteps' reference
+                               {sim::IntegratorKind::kVelocityVerlet, 10},
+                               {sim::IntegratorKind::kRk4, 10},
+                               {sim::IntegratorKind::kXpbd, 2},
+                               {sim::IntegratorKind::kXpbd, 10}};
 
 bool Explicit(sim::IntegratorKind kind) {
   return kind == sim::IntegratorKind::kSymplecticEuler || kind == sim::IntegratorKind::kVelocityVerlet ||
@@ -78,9 +83,20 @@ bool SameMethod(const Method& a, const Method& b) {
 
 /// What auto estimates of `probe`'s method on a grid of cols x rows (spacing `ratio` times the
 /// grid in force's); none when it would need more substeps than any server keeps up with.
+/// Substeps of the explicit methods on one grid: symplectic Euler's from that grid's stability
+/// limit (sim::SubstepsFor, which estimates the grid's highest frequency: the costly part), each
+/// other method's in the ratio of their stable steps, as the probes found it on the probe grid.
+struct ExplicitSubsteps {
+  int symplectic_euler = 1;        ///< on this grid
+  int probe_symplectic_euler = 1;  ///< on the probe grid
+  int For(const Probe& probe) const {
+    return std::max(1, int(std::ceil(double(symplectic_euler) * probe.substeps / probe_symplectic_euler)));
+  }
+};
+
 std::optional<ModelDecision> Estimate(const Probe& probe, const sim::SimParams& now, int cols, int rows, double ratio,
-                                      const ClothOnScreen& cloth, const AutoSettings& settings,
-                                      const CostModel& costs) {
+                                      const ExplicitSubsteps& explicit_substeps, const ClothOnScreen& cloth,
+                                      const AutoSettings& settings, const CostModel& costs) {
   ModelDecision d;
   d.integrator = probe.method.integrator;
   d.solver_iterations = probe.method.iterations;
@@ -95,7 +111,7 @@ std::optional<ModelDecision> Estimate(const Probe& probe, const sim::SimParams& 
   // An explicit method's substep follows this grid's stability limit, and its defect the
   // substep: e ~ h^p. The others take the probe's substeps on any grid, and its defect.
   const bool explicit_method = Explicit(d.integrator);
-  d.substeps = explicit_method ? sim::SubstepsFor(params) : probe.substeps;
+  d.substeps = explicit_method ? explicit_substeps.For(probe) : probe.substeps;
   if (d.substeps > sim::kMaxSubsteps) return std::nullopt;  // the parameter table's limit
   d.time_px = explicit_method ? probe.time_px * std::pow(double(probe.substeps) / d.substeps, OrderOf(d.integrator))
                               : probe.time_px;
@@ -139,8 +155,15 @@ ModelDecisions DecideModels(const sim::SimulationSnapshot<float>& snapshot, cons
   int current = -1, current_allowed = -1;
   for (const auto& [cols, rows] : grids) {
     const double ratio = Spacing(now, cols, rows) / spacing_now;  // > 1: coarser
+    sim::SimParams symplectic = now;
+    symplectic.integrator = sim::IntegratorKind::kSymplecticEuler;
+    symplectic.cols = cols;
+    symplectic.rows = rows;
+    symplectic.substeps = 0;
+    const ExplicitSubsteps explicit_substeps{sim::SubstepsFor(symplectic), probes.front().substeps};
     for (const Probe& probe : probes) {
-      const std::optional<ModelDecision> d = Estimate(probe, now, cols, rows, ratio, cloth, settings, costs);
+      const std::optional<ModelDecision> d =
+          Estimate(probe, now, cols, rows, ratio, explicit_substeps, cloth, settings, costs);
       if (!d) continue;
       const Candidate candidate{d->integrator, d->substeps, cols, rows, d->error_px, d->cost};
       const bool same_method = SameMethod(probe.method, in_force);

@@ -3,10 +3,10 @@
 // From one snapshot of the simulation, the camera in force (its image size included) and what
 // the user left to it (the integrator, the grid or both), it builds candidate models and chooses
 // among them by model_choice.hpp:
-//   candidates  each grid of the ladder (kGridLadder, at the flag's cols : rows) times each
-//               integrator auto may use (symplectic Euler, Verlet, RK4, XPBD at 2 and 10
-//               iterations, implicit Euler, projective dynamics at 10), or only the grid or the
-//               integrator in force where the user fixed it;
+//   candidates  each grid of the ladder (kGridLadder, at AutoSettings::rows_per_col) and the
+//               grid in force, times each integrator auto may use (symplectic Euler, Verlet,
+//               RK4, XPBD at 2 and 10 iterations) and the one in force; those auto may switch to
+//               keep the grid or the integrator where the user fixed it;
 //   time error  frame_defect.hpp, measured for each integrator from this snapshot (a probe: three
 //               frame intervals of simulation each), on the grid in force or, where that is finer
 //               than kProbeCols columns, on the flag resampled to kProbeCols; on another grid it
@@ -37,7 +37,7 @@ namespace flagsim::model {
 /// Columns of the grids auto may choose; rows follow AutoSettings::rows_per_col.
 inline constexpr int kGridLadder[] = {16, 24, 32, 48, 64, 96, 128};
 /// Columns of the grid the integrators are probed on, at most: a finer flag is resampled to it.
-inline constexpr int kProbeCols = 32;
+inline constexpr int kProbeCols = 24;
 
 struct AutoSettings {
   bool integrator = true;       ///< auto chooses the integrator (else the snapshot's stays)

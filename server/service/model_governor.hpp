@@ -30,7 +30,7 @@ namespace flagsim {
 class ModelGovernor {
  public:
   static constexpr double kPeriod = 2.5;   ///< s, simulated, between questions while nothing changes
-  static constexpr double kLatency = 0.2;  ///< s, simulated, from question to decision
+  static constexpr double kLatency = 0.5;  ///< s, simulated, from question to decision
   static constexpr double kLeast = 0.5;    ///< s, simulated, between questions at the least
 
   ~ModelGovernor();
