@@ -73,12 +73,8 @@ sim::SimulationSnapshot<float> ProbeStart(const sim::SimulationSnapshot<float>& 
   return coarse.Snapshot();
 }
 
-bool Iterates(sim::IntegratorKind kind) {
-  return kind == sim::IntegratorKind::kXpbd || kind == sim::IntegratorKind::kProjectiveDynamics;
-}
-
 bool SameMethod(const Method& a, const Method& b) {
-  return a.integrator == b.integrator && (!Iterates(a.integrator) || a.iterations == b.iterations);
+  return a.integrator == b.integrator && (!TakesIterations(a.integrator) || a.iterations == b.iterations);
 }
 
 /// What auto estimates of `probe`'s method on a grid of cols x rows (spacing `ratio` times the
@@ -118,8 +114,6 @@ std::optional<ModelDecision> Estimate(const Probe& probe, const sim::SimParams& 
   d.resolution_px = ResolutionErrorPx(cloth, now.width, now.height, cols, rows);
   d.error_px = d.time_px + d.resolution_px;
   d.cost = costs.RealTimeFraction(params, d.substeps, settings.collision_passes / ratio);
-  d.changes = !(SameMethod(probe.method, {now.integrator, now.solver_iterations}) && cols == now.cols &&
-                rows == now.rows);
   return d;
 }
 
@@ -199,7 +193,7 @@ ModelDecision DecideModel(const sim::SimulationSnapshot<float>& snapshot, const 
 
 std::string Describe(const ModelDecision& d) {
   char text[200];
-  const std::string iterations = Iterates(d.integrator) ? " (" + std::to_string(d.solver_iterations) + " iterations)" : "";
+  const std::string iterations = TakesIterations(d.integrator) ? " (" + std::to_string(d.solver_iterations) + " iterations)" : "";
   std::snprintf(text, sizeof(text), "%s%s at %d x %d, %d substep%s: %.2g px, %.2g of real time",
                 sim::IntegratorName(d.integrator).c_str(), iterations.c_str(), d.cols, d.rows, d.substeps,
                 d.substeps == 1 ? "" : "s", d.error_px, d.cost);

@@ -59,8 +59,12 @@ struct ModelDecision {
   double time_px = 0, resolution_px = 0;
   double cost = 0;           ///< CPU seconds per simulated second, by the cost model
   ChoiceKind kind = ChoiceKind::kWithinBudget;
-  bool changes = false;      ///< differs from the model in force
 };
+
+/// Whether an integrator takes solver_iterations (xpbd, projective dynamics).
+inline bool TakesIterations(sim::IntegratorKind kind) {
+  return kind == sim::IntegratorKind::kXpbd || kind == sim::IntegratorKind::kProjectiveDynamics;
+}
 
 /// What auto decides from one snapshot.
 struct ModelDecisions {

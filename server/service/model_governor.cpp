@@ -26,16 +26,12 @@ model::AutoSettings ModelGovernor::SettingsOf(const Session& session) {
 
 namespace {
 
-bool Iterates(sim::IntegratorKind kind) {
-  return kind == sim::IntegratorKind::kXpbd || kind == sim::IntegratorKind::kProjectiveDynamics;
-}
-
 /// Whether `decision` changes what auto may change in `scene` now (the user may have fixed the
 /// integrator or the grid since the question, or the model may be that one already).
 bool Switches(const model::ModelDecision& decision, const Scene& scene) {
   const sim::SimParams& now = scene.sim;
   const bool method = decision.integrator != now.integrator ||
-                      (Iterates(decision.integrator) && decision.solver_iterations != now.solver_iterations);
+                      (model::TakesIterations(decision.integrator) && decision.solver_iterations != now.solver_iterations);
   const bool grid = decision.cols != now.cols || decision.rows != now.rows;
   return (scene.model.auto_integrator && method) || (scene.model.auto_grid && grid);
 }
