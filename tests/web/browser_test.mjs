@@ -86,20 +86,24 @@ async function checkParameterPanel(page) {
   section("the parameter panel");
   const row = page.locator('.param-row[data-name="stiffness"]');
   const box = row.locator('input[type="number"]');
+  // Two changes back to back: the second is refused, and the first's answer, whenever it
+  // arrives, must not hide the refusal.
   await box.fill("1500");
+  await box.press("Enter");
+  await box.fill("-5");
   await box.press("Enter");
   await waitFor(() => hooks(page, () => window.flagsim.params?.find((p) => p.name === "stiffness")?.value === 1500),
                 10, "PARAMS with stiffness 1500");
   check("a value typed in the panel reaches the server (PARAMS shows it)", true);
   const params = await flagctlRun("params");
   check("  flagctl params agrees", /^stiffness +1500 /m.test(params), params.split("\n").find((l) => l.startsWith("stiffness")));
-  await box.fill("-5");
-  await box.press("Enter");
   const error = row.locator(".param-error");
   await error.waitFor({ state: "visible", timeout: 10000 });
-  const reason = await error.textContent();
-  check("a value out of range shows the server's reason", reason.includes("stiffness: -5 is out of range"), reason);
+  await waitFor(() => hooks(page, () => !document.querySelector('.param-row[data-name="stiffness"]').classList.contains("pending")),
+                10, "both changes answered");
   await page.waitForTimeout(500);
+  const reason = (await error.isVisible()) ? await error.textContent() : "(hidden)";
+  check("a value out of range then shows the server's reason, and keeps it", reason.includes("stiffness: -5 is out of range"), reason);
   const value = await hooks(page, () => window.flagsim.params.find((p) => p.name === "stiffness").value);
   check("  and changes nothing", value === 1500 && /^stiffness +1500 /m.test(await flagctlRun("params")), value);
   check("  the box shows the value in force again", Number(await box.inputValue()) === 1500);

@@ -42,16 +42,19 @@ export class ParamPanel {
     }
   }
 
-  /// Sends one change with setParameters and shows it pending until its answer.
+  /// Sends one change with setParameters and shows it pending until its answer. Only the
+  /// row's newest change settles it: an older change answered late (the gateway refuses a value
+  /// out of range at once, the server accepts one a round trip later) neither hides the newer
+  /// change's reason nor shows a value the newer change replaced.
   commit(row, value) {
     const { promise } = this.connection.setParameters([{ name: row.parameter.name, value }]);
-    row.setPending(true);
+    const change = row.beginChange();
     promise.then(
       (values) => {
         const answered = values?.find((each) => each.name === row.parameter.name);
-        row.settle(answered ? readValue(row.parameter, answered.value) : row.valueInForce);
+        row.settle(change, answered ? readValue(row.parameter, answered.value) : row.valueInForce);
       },
-      (error) => row.settle(row.valueInForce, error.message),
+      (error) => row.settle(change, row.valueInForce, error.message),
     );
   }
 

@@ -13,6 +13,7 @@ export class ParamRow {
     this.onCommit = onCommit;
     this.valueInForce = parameter.value;
     this.pending = false;
+    this.changes = 0;  // changes committed; the newest one's answer settles the row
     this.state = el("span", { class: "param-state" });
     this.error = el("div", { class: "param-error", hidden: true });
     this.element = el("div", { class: "param-row", title: tooltip(parameter), dataset: { name: parameter.name } },
@@ -54,7 +55,7 @@ export class ParamRow {
   commitNumber() {
     const value = Number(this.number.value);
     if (this.number.value.trim() === "" || !Number.isFinite(value)) {
-      this.settle(this.valueInForce, `'${this.number.value}' is not a number`);
+      this.settle(this.beginChange(), this.valueInForce, `'${this.number.value}' is not a number`);
       return;
     }
     this.commit(value);
@@ -76,6 +77,13 @@ export class ParamRow {
     }
   }
 
+  /// A new change: pending, its predecessors' answers ignored. Returns its number for settle.
+  beginChange() {
+    this.changes += 1;
+    this.setPending(true);
+    return this.changes;
+  }
+
   setPending(pending) {
     this.pending = pending;
     this.element.classList.toggle("pending", pending);
@@ -88,8 +96,10 @@ export class ParamRow {
     if (!this.pending) this.show(value);
   }
 
-  /// The change's outcome: the value then in force and, when rejected, the server's reason.
-  settle(valueInForce, reason = "") {
+  /// Change `change`'s outcome: the value then in force and, when rejected, the server's
+  /// reason. An answer to a change older than the newest is ignored.
+  settle(change, valueInForce, reason = "") {
+    if (change !== this.changes) return;
     this.setPending(false);
     this.valueInForce = valueInForce;
     this.show(valueInForce);
