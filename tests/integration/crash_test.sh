@@ -38,7 +38,9 @@ await_server "$flagctl" $prefix || { fail "flagd answers" "$work/flagd.log"; fin
 case $mode in
   record)
     echo "-- flagctl record, killed"
-    ctl record -o "$work/run.lcmlog" >"$work/record.out" 2>&1 &
+    # flagctl itself in the background, not the ctl function: $! must be the recorder's pid, not
+    # a subshell's whose death would leave the recorder running.
+    "$flagctl" --prefix $prefix --timeout 3 record -o "$work/run.lcmlog" >"$work/record.out" 2>&1 &
     recorder=$!
     log=$work/run.lcmlog
     ;;
