@@ -3,6 +3,10 @@
 // stepped in the same run on one thread.
 //
 //   build/bench/collision_bench [--csv FILE] [--repetitions N] [--seconds S] [--max-cols C]
+//                               [--set NAME=VALUE ...]
+//
+// --set overrides a parameter of every preset before its grid is scaled (integrator=xpbd,
+// solver_iterations=2: the model auto takes at fine grids).
 //
 // The run: both simulations from rest over S / scale seconds of simulated time (scale = cols / 32,
 // so 10, 5, 2.5 and 1.25 s by default: the big grids are slow), taking turns one STATE interval
@@ -27,6 +31,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +39,7 @@
 #include "bench/lab/table.hpp"
 #include "server/lab/cpu_time.hpp"
 #include "server/lab/triangle_crossings.hpp"
+#include "server/scene/parameter_table.hpp"
 #include "server/scene/scene_file.hpp"
 #include "server/sim/cloth_mesh.hpp"
 #include "server/sim/simulation.hpp"
@@ -52,6 +58,7 @@ struct Options {
   int repetitions = 5;  ///< timed repetitions per grid
   double seconds = 10;  ///< s of simulated time at 32 x 24; S / scale at larger grids
   int max_cols = 256;   ///< grids wider than this are left out
+  std::vector<std::string> assignments;  ///< NAME=VALUE, applied to every preset
 };
 
 /// A preset at 32 * scale x 24 * scale nodes.
@@ -148,7 +155,15 @@ Timing TimeInTurns(const sim::SimulationSnapshot<float>& off, const sim::Simulat
 
 /// One case: the run, then the timing from where the run ended; a row of the table.
 void Measure(const Case& one, const Options& options, Table* table) {
-  const Scene scene = LoadScene(one.preset);
+  Scene scene = LoadScene(one.preset);
+  for (const std::string& assignment : options.assignments) {
+    const std::size_t equals = assignment.find('=');
+    const std::string problem =
+        equals == std::string::npos ? "expected NAME=VALUE"
+                                    : ParameterTable::Get().Assign(assignment.substr(0, equals),
+                                                                   assignment.substr(equals + 1), &scene);
+    if (!problem.empty()) throw SceneError("--set " + assignment + ": " + problem);
+  }
   sim::SimParams params = scene.sim;
   params.cols *= one.scale;
   params.rows *= one.scale;
@@ -185,6 +200,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--max-cols", options.max_cols, "leave out grids wider than this (32 for 32 x 24 alone)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--set", options.assignments, "override a parameter of every preset: NAME=VALUE (repeatable)");
   CLI11_PARSE(app, argc, argv);
   flagsim::lab::Table table({"preset", "cols", "rows", "substeps", "seconds", "ms_off", "ms_on", "ratio",
                              "run_ms_off", "run_ms_on", "run_ratio", "patch_pairs", "candidates", "contacts",
@@ -192,8 +208,13 @@ int main(int argc, char** argv) {
                             options.csv);
   const std::vector<flagsim::bench::Case> cases = {{"breeze", 1}, {"breeze", 2}, {"breeze", 4},
                                                    {"breeze", 8}, {"calm", 1},   {"gale", 1}};
-  for (const flagsim::bench::Case& one : cases) {
-    if (32 * one.scale <= options.max_cols) flagsim::bench::Measure(one, options, &table);
+  try {
+    for (const flagsim::bench::Case& one : cases) {
+      if (32 * one.scale <= options.max_cols) flagsim::bench::Measure(one, options, &table);
+    }
+  } catch (const flagsim::SceneError& error) {
+    std::fprintf(stderr, "collision_bench: %s\n", error.what());
+    return 2;
   }
   return 0;
 }

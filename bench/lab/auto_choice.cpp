@@ -1,10 +1,22 @@
-// What `auto` chooses (server/model/auto_model.hpp) for each preset at its own camera, 3 and 10
-// times farther, at 1280 x 720 and 640 x 360, with a cost budget of one core: the model, its
-// estimated screen_error and cost; then the flag switched to that model (Simulation::Regrid and
-// the integrator) and flown another second, and its screen_error measured there (the frame
-// defect and the resolution error of the state it reached); beside the preset's own model
-// (32 x 24, symplectic Euler) measured at the same view.
+// What `auto` chooses (server/model/auto_model.hpp) against every fixed model it could have run.
+//
+// Each preset is flown 1 s from rest on its own model; from that snapshot, at six views (its own
+// camera, 3 and 10 times farther, at 1280 x 720 and 640 x 360):
+//   auto       DecideModel at the view; the flag switched to its choice (Simulation::Regrid and
+//              the integrator), flown another second, and its screen_error measured there (the
+//              frame defect and the resolution error of the state it reached);
+//   fixed      every method auto may use on every grid of its ladder, each switched from the same
+//              snapshot and flown the same second once, its screen_error measured at every view;
+//              the cheapest whose measured error is within the budget at this view ("cheapest"),
+//              and the cheapest within it at the preset's own view at this image size ("own
+//              view"): what a user who set the model once for the close-up would pay everywhere.
+// Every cost is the cost model's (cost_model.hpp) at the substeps and self-collision passes of
+// the flown run's last step, the same arithmetic for auto and for the fixed models, so that the
+// comparison does not depend on how busy the machine was.
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
 
 #include "bench/lab/experiments.hpp"
 #include "bench/lab/table.hpp"
@@ -17,63 +29,126 @@ namespace flagsim::lab {
 namespace {
 
 constexpr double kFirstSeconds = 1.0, kAfterSeconds = 1.0;
+constexpr double kBudgetPx = model::AutoSettings{}.budget_px;
 
-/// screen_error of a simulation's present state at `camera`: frame defect and resolution, px.
-struct Measured {
-  double time = 0, resolution = 0;
-  double total() const { return time + resolution; }
+/// A model of the flag: method and grid.
+struct FixedModel {
+  sim::IntegratorKind integrator;
+  int iterations;
+  int cols, rows;
 };
-Measured MeasuredError(const sim::Simulation<float>& simulation, const render::Camera& camera) {
+
+/// The methods auto may use (auto_model.hpp).
+constexpr std::pair<sim::IntegratorKind, int> kMethods[] = {{sim::IntegratorKind::kSymplecticEuler, 10},
+                                                            {sim::IntegratorKind::kVelocityVerlet, 10},
+                                                            {sim::IntegratorKind::kRk4, 10},
+                                                            {sim::IntegratorKind::kXpbd, 2},
+                                                            {sim::IntegratorKind::kXpbd, 10}};
+
+std::string Name(const FixedModel& m) {
+  return sim::IntegratorName(m.integrator) + (model::TakesIterations(m.integrator) ? std::to_string(m.iterations) : "") +
+         " " + std::to_string(m.cols) + "x" + std::to_string(m.rows);
+}
+
+/// The preset's camera moved back along its line of sight, `distance` times as far, at an image size.
+struct View {
+  double distance;
+  int width, height;
+  render::Camera camera;
+};
+
+std::vector<View> ViewsOf(const Scene& scene) {
+  std::vector<View> views;
+  for (const double distance : {1.0, 3.0, 10.0}) {
+    for (const auto& [width, height] : {std::pair{1280, 720}, std::pair{640, 360}}) {
+      render::Camera camera = scene.camera;
+      camera.eye = camera.target + distance * (camera.eye - camera.target);
+      camera.width = width;
+      camera.height = height;
+      views.push_back({distance, width, height, camera});
+    }
+  }
+  return views;
+}
+
+/// screen_error of a simulation's present state at `camera`, px: frame defect plus resolution.
+double MeasuredError(const sim::Simulation<float>& simulation, const render::Camera& camera) {
   const int frame_steps = std::max(1, int(std::lround(1.0 / (30.0 * simulation.params().dt))));
   const model::ClothOnScreen cloth = model::MeasureClothOnScreen(simulation.model(), simulation.state(), camera);
   const sim::SimParams& p = simulation.params();
-  return {model::MeasureFrameDefect(simulation.Snapshot(), camera, frame_steps).error_px,
-          model::ResolutionErrorPx(cloth, p.width, p.height, p.cols, p.rows)};
+  return model::MeasureFrameDefect(simulation.Snapshot(), camera, frame_steps).error_px +
+         model::ResolutionErrorPx(cloth, p.width, p.height, p.cols, p.rows);
 }
 
-void Fly(sim::Simulation<float>* simulation, double seconds) {
-  for (int i = 0; i < int(std::lround(seconds / simulation->params().dt)); ++i) simulation->Step();
+/// A fixed model flown from `snapshot`: its cost and its measured error at every view.
+struct Flown {
+  FixedModel model;
+  double cost = 0;              ///< CPU s per simulated s, by the cost model
+  std::vector<double> error_px;  ///< at each view
+};
+
+Flown Fly(const sim::SimulationSnapshot<float>& snapshot, const FixedModel& m, const std::vector<View>& views) {
+  sim::Simulation<float> simulation(snapshot);
+  sim::SimParams params = simulation.params();
+  params.integrator = m.integrator;
+  params.solver_iterations = m.iterations;
+  params.substeps = 0;
+  simulation.SetParams(params);
+  simulation.Regrid(m.cols, m.rows);
+  for (int i = 0; i < int(std::lround(kAfterSeconds / params.dt)); ++i) simulation.Step();
+  Flown flown{m, model::CostModel::Fitted().RealTimeFraction(simulation.params(), simulation.substeps(),
+                                                             simulation.self_collision_stats().passes),
+              {}};
+  for (const View& view : views) flown.error_px.push_back(MeasuredError(simulation, view.camera));
+  return flown;
 }
+
+/// The cheapest of `flown` within the budget at view `v`; none if no model meets it.
+const Flown* Cheapest(const std::vector<Flown>& flown, std::size_t v) {
+  const Flown* best = nullptr;
+  for (const Flown& f : flown) {
+    if (f.error_px[v] <= kBudgetPx && (!best || f.cost < best->cost)) best = &f;
+  }
+  return best;
+}
+
+std::string NameOrNone(const Flown* f) { return f ? Name(f->model) : "none"; }
+std::string Cost(const Flown* f) { return f ? Table::Number(f->cost) : "-"; }
 
 }  // namespace
 
 void AutoChoice(const std::string& csv) {
-  Table table({"scene", "distance", "image", "auto_chose", "estimated_px", "measured_px", "measured_time_px",
-               "estimated_cost", "preset_model_px", "preset_model_cost"},
+  Table table({"scene", "distance", "image", "auto_chose", "estimated_px", "measured_px", "auto_cost", "cheapest",
+               "cheapest_px", "cheapest_cost", "own_view_model", "own_view_px", "own_view_cost"},
               csv);
-  const int images[][2] = {{1280, 720}, {640, 360}};
   for (const std::string& preset : PresetNames()) {
     const Scene scene = LoadScene(preset);
     sim::SimParams params = scene.sim;
     params.threads = 1;
     sim::Simulation<float> start(params, scene.wind, scene.seed);
-    Fly(&start, kFirstSeconds);
+    for (int i = 0; i < int(std::lround(kFirstSeconds / params.dt)); ++i) start.Step();
     const sim::SimulationSnapshot<float> snapshot = start.Snapshot();
-    for (const double distance : {1.0, 3.0, 10.0}) {
-      for (const auto& image : images) {
-        render::Camera camera = scene.camera;
-        camera.eye = camera.target + distance * (camera.eye - camera.target);
-        camera.width = image[0];
-        camera.height = image[1];
-        model::AutoSettings settings;
-        settings.collision_passes = start.self_collision_stats().passes;
-        const model::ModelDecision decision = model::DecideModel(snapshot, camera, settings);
-        sim::Simulation<float> chosen(snapshot), preset_model(snapshot);
-        sim::SimParams switched = chosen.params();
-        switched.integrator = decision.integrator;
-        switched.solver_iterations = decision.solver_iterations;
-        chosen.SetParams(switched);
-        chosen.Regrid(decision.cols, decision.rows);
-        Fly(&chosen, kAfterSeconds);
-        Fly(&preset_model, kAfterSeconds);
-        const double preset_cost = model::CostModel::Fitted().RealTimeFraction(
-            preset_model.params(), preset_model.substeps(), preset_model.self_collision_stats().passes);
-        const Measured measured = MeasuredError(chosen, camera);
-        table.Add({preset, Table::Number(distance), std::to_string(image[0]) + "x" + std::to_string(image[1]),
-                   model::Describe(decision), Table::Number(decision.error_px), Table::Number(measured.total()),
-                   Table::Number(measured.time), Table::Number(decision.cost),
-                   Table::Number(MeasuredError(preset_model, camera).total()), Table::Number(preset_cost)});
-      }
+    const std::vector<View> views = ViewsOf(scene);
+    std::vector<Flown> fixed;
+    for (const int cols : model::kGridLadder) {
+      const int rows = int(std::lround(cols * double(params.rows) / params.cols));
+      for (const auto& [integrator, iterations] : kMethods) fixed.push_back(Fly(snapshot, {integrator, iterations, cols, rows}, views));
+    }
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      const View& view = views[v];
+      model::AutoSettings settings;
+      settings.collision_passes = start.self_collision_stats().passes;
+      settings.rows_per_col = double(params.rows) / params.cols;
+      const model::ModelDecision decision = model::DecideModel(snapshot, view.camera, settings);
+      const Flown chosen = Fly(snapshot, {decision.integrator, decision.solver_iterations, decision.cols, decision.rows},
+                               {view});
+      const Flown* cheapest = Cheapest(fixed, v);
+      const Flown* own_view = Cheapest(fixed, v % 2);  // the preset's own distance, this image size
+      table.Add({preset, Table::Number(view.distance), std::to_string(view.width) + "x" + std::to_string(view.height),
+                 Name(chosen.model), Table::Number(decision.error_px), Table::Number(chosen.error_px[0]),
+                 Table::Number(chosen.cost), NameOrNone(cheapest), cheapest ? Table::Number(cheapest->error_px[v]) : "-",
+                 Cost(cheapest), NameOrNone(own_view), own_view ? Table::Number(own_view->error_px[v]) : "-",
+                 Cost(own_view)});
     }
   }
 }

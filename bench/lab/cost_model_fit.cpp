@@ -1,10 +1,13 @@
 // The cost model's fit (server/model/cost_model.hpp). Each integrator on the breeze at 64 x 48 and
 // 128 x 96, without self-collision, flown 1 s from rest, then timed for a quarter second of steps
 // in CPU seconds of the stepping thread: seconds per node-substep (for XPBD and projective
-// dynamics at 2 and 10 iterations, fitted as a + b iterations). Then symplectic Euler with and
-// without self-collision from the same snapshot: the difference per node and pass. Prints the
-// figures and the constants for cost_model.cpp.
+// dynamics at 2 and 10 iterations, fitted as a + b iterations). Then XPBD at 2 iterations with
+// and without self-collision from the same snapshot at 32 x 24, 64 x 48 and 128 x 96: the
+// difference per node and pass, fitted as w_ref (nodes / 3072)^g. Prints the figures and the
+// constants for cost_model.cpp.
 #include <algorithm>
+#include <cmath>
+#include <iterator>
 #include <cstdio>
 
 #include "bench/lab/experiments.hpp"
@@ -18,6 +21,7 @@ namespace flagsim::lab {
 namespace {
 
 constexpr double kMeasureSeconds = 0.25;
+constexpr double kCollisionReferenceNodes = 3072;  ///< 64 x 48
 
 struct Timing {
   double per_step = 0;  ///< s of CPU
@@ -91,23 +95,33 @@ void CostModelFit(const std::string& csv) {
                   sim::IntegratorName(kind).c_str());
     constants += line;
   }
-  double collision = 0;
-  for (const int scale : {2, 4}) {
+  // Self-collision on XPBD at 2 iterations, the method auto runs on fine grids, at three grids;
+  // per node and pass = w_ref (nodes / 3072)^g by least squares in log-log.
+  double sum_x = 0, sum_y = 0, sum_xx = 0, sum_xy = 0;
+  const int scales[] = {1, 2, 4};
+  for (const int scale : scales) {
     sim::SimParams params = scene.sim;
     params.cols = 32 * scale;
     params.rows = 24 * scale;
+    params.integrator = sim::IntegratorKind::kXpbd;
+    params.solver_iterations = 2;
     const sim::SimulationSnapshot<float> with = Flown(params, scene);
     sim::SimulationSnapshot<float> without = with;
     without.params.self_collision = false;
     const Timing on = Time(with), off = Time(without);
     const double nodes = double(params.cols) * params.rows;
-    const double unit = (on.per_step - off.per_step) / (nodes * std::max(1.0, on.passes));
-    table.Add({"self-collision pass", std::to_string(params.cols) + "x" + std::to_string(params.rows), "",
+    const double unit = std::max(1e-12, (on.per_step - off.per_step) / (nodes * std::max(1.0, on.passes)));
+    table.Add({"collision (xpbd)", std::to_string(params.cols) + "x" + std::to_string(params.rows), "2",
                Table::Number(on.substeps), Table::Number(on.passes), Table::Number(1e3 * (on.per_step - off.per_step)),
                Table::Number(1e9 * unit)});
-    collision += unit / 2;
+    const double x = std::log(nodes / kCollisionReferenceNodes), y = std::log(unit);
+    sum_x += x, sum_y += y, sum_xx += x * x, sum_xy += x * y;
   }
-  std::printf("# cost_model.cpp, seconds:\n%s    per node and collision pass: %.3g\n", constants.c_str(), collision);
+  const double n = std::size(scales);
+  const double growth = (n * sum_xy - sum_x * sum_y) / (n * sum_xx - sum_x * sum_x);
+  const double at_reference = std::exp((sum_y - growth * sum_x) / n);
+  std::printf("# cost_model.cpp, seconds:\n%s    self-collision: {%.3g, %.0f, %.3g}\n", constants.c_str(), at_reference,
+              kCollisionReferenceNodes, growth);
 }
 
 }  // namespace flagsim::lab

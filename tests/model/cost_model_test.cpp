@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace flagsim::model {
 namespace {
 
@@ -18,7 +20,7 @@ TEST(CostModel, ScalesWithNodesSubstepsIterationsAndPasses) {
   EXPECT_DOUBLE_EQ(model.SecondsPerStep(params, 12, 0), 2 * base);
   EXPECT_DOUBLE_EQ(model.SecondsPerStep(params, 24, 0), 4 * base);
   EXPECT_NEAR(model.SecondsPerStep(params, 24, 2) - model.SecondsPerStep(params, 24, 0),
-              2 * 64 * 24 * model.per_node_collision_pass, 1e-15);
+              2 * 64 * 24 * model.collision.PerNodePass(64 * 24), 1e-15);
   params.integrator = sim::IntegratorKind::kXpbd;
   params.solver_iterations = 4;
   const double four = model.SecondsPerStep(params, 1, 0);
@@ -26,6 +28,15 @@ TEST(CostModel, ScalesWithNodesSubstepsIterationsAndPasses) {
   EXPECT_NEAR(model.SecondsPerStep(params, 1, 0) - four,
               64 * 24 * 4 * model.integrators[int(sim::IntegratorKind::kXpbd)].per_node_substep_iteration, 1e-15);
   EXPECT_DOUBLE_EQ(model.RealTimeFraction(params, 1, 0), model.SecondsPerStep(params, 1, 0) / params.dt);
+}
+
+// A pass's cost per node follows the nodes as a power: w_ref at the reference, times 2^g per
+// doubling of the nodes.
+TEST(CostModel, CollisionCostPerNodeGrowsAsAPowerOfTheNodes) {
+  const CollisionCost cost{4e-8, 3072, 0.75};
+  EXPECT_DOUBLE_EQ(cost.PerNodePass(3072), 4e-8);
+  EXPECT_NEAR(cost.PerNodePass(4 * 3072), 4e-8 * std::pow(4.0, 0.75), 1e-20);
+  EXPECT_NEAR(cost.PerNodePass(3072 / 4.0), 4e-8 * std::pow(0.25, 0.75), 1e-20);
 }
 
 }  // namespace
