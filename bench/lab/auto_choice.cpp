@@ -45,9 +45,13 @@ constexpr std::pair<sim::IntegratorKind, int> kMethods[] = {{sim::IntegratorKind
                                                             {sim::IntegratorKind::kXpbd, 2},
                                                             {sim::IntegratorKind::kXpbd, 10}};
 
+/// "se 32x24", "verlet 64x48", "rk4 24x18", "xpbd2 128x96": short enough for the table's columns.
 std::string Name(const FixedModel& m) {
-  return sim::IntegratorName(m.integrator) + (model::TakesIterations(m.integrator) ? std::to_string(m.iterations) : "") +
-         " " + std::to_string(m.cols) + "x" + std::to_string(m.rows);
+  const std::string method = m.integrator == sim::IntegratorKind::kSymplecticEuler ? "se"
+                             : model::TakesIterations(m.integrator)
+                                 ? sim::IntegratorName(m.integrator) + std::to_string(m.iterations)
+                                 : sim::IntegratorName(m.integrator);
+  return method + " " + std::to_string(m.cols) + "x" + std::to_string(m.rows);
 }
 
 /// The preset's camera moved back along its line of sight, `distance` times as far, at an image size.
