@@ -96,8 +96,13 @@ void FrameMirror::Mirror(const frame_t& manifest) {
   latest_ = std::move(frame);
 }
 
+void FrameMirror::ServerRestarted() {
+  assembler_ = TileAssembler{};
+  latest_.reset();
+}
+
 std::shared_ptr<const std::string> TileUpdateFor(const MirroredFrame& frame, ClientTiles* client) {
-  if (client->frame_id == frame.frame_id) return nullptr;
+  if (client->sequence == frame.sequence) return nullptr;
   const bool keyframe = client->width != frame.width || client->height != frame.height ||
                         client->tile_size != frame.tile_size ||
                         client->hashes.size() != frame.tile_hashes.size();
@@ -110,7 +115,7 @@ std::shared_ptr<const std::string> TileUpdateFor(const MirroredFrame& frame, Cli
     client->hashes[i] = frame.tile_hashes[i];
     ++count;
   }
-  client->frame_id = frame.frame_id;
+  client->sequence = frame.sequence;
   client->width = frame.width;
   client->height = frame.height;
   client->tile_size = frame.tile_size;

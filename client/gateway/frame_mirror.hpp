@@ -33,9 +33,10 @@ struct MirroredFrame {
   std::shared_ptr<const std::vector<uint8_t>> image;             ///< RGB8, only while images are wanted
 };
 
-/// What one client was last sent: the frame and each tile's pixel hash.
+/// What one client was last sent: the frame (by the mirror's sequence: frame ids start again
+/// with a new server) and each tile's pixel hash.
 struct ClientTiles {
-  int64_t frame_id = -1;
+  uint64_t sequence = 0;
   int width = 0, height = 0, tile_size = 0;
   std::vector<uint64_t> hashes;
   /// Forget everything: the next update is a keyframe.
@@ -54,6 +55,10 @@ class FrameMirror {
   std::shared_ptr<const MirroredFrame> latest() const { return latest_; }
   /// Whether frames keep a copy of their image (for the JPEG channel).
   void KeepImages(bool keep) { keep_images_ = keep; }
+  /// A new server on the bus: its frame ids start again from 0, so the tiles and the frame of
+  /// the old one are forgotten (else the new one's would be taken for older and skipped, until
+  /// its ids passed the old one's), and nothing is mirrored until its first whole frame.
+  void ServerRestarted();
 
  private:
   void Mirror(const frame_t& manifest);

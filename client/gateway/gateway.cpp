@@ -70,6 +70,7 @@ void Gateway::SubscribeBus() {
   SubscribeDecoded<state_t>(
       bus_, channels_.state,
       [this](const state_t& message) {
+        NoteServer(message.server_id);
         const auto state = std::make_shared<const state_t>(message);
         feeds_[kStateChannel].PublishLazily(Nanoseconds(state->utime),
                                             [state] { return JsonText(StateSummaryJson(*state)); });
@@ -80,7 +81,10 @@ void Gateway::SubscribeBus() {
       dropped, 200);
   SubscribeDecoded<status_t>(
       bus_, channels_.status,
-      [this](const status_t& status) { Publish(kStatusChannel, status.utime, JsonText(StatusJson(status))); },
+      [this](const status_t& status) {
+        NoteServer(status.server_id);
+        Publish(kStatusChannel, status.utime, JsonText(StatusJson(status)));
+      },
       dropped);
   SubscribeDecoded<timeline_t>(
       bus_, channels_.timeline,
@@ -136,6 +140,18 @@ void Gateway::OnParams(const params_t& params) {
     for (auto& [id, client] : clients_) client->protocol().OnParametersChanged(changed);
   }
   WakeAll();
+}
+
+void Gateway::NoteServer(int64_t server_id) {
+  if (server_id == 0 || server_id == server_id_) return;  // 0: a render's log, no server
+  const bool restarted = server_id_ != 0;
+  server_id_ = server_id;
+  if (!restarted) return;
+  ++counters_.server_restarts;
+  mirror_.ServerRestarted();
+  incomplete_in_a_row_ = 0;
+  last_camera_ = nullptr;
+  RequestKeyframe(true);
 }
 
 void Gateway::OnAck(const ack_t& ack) {
@@ -397,6 +413,7 @@ void Gateway::PublishGatewayStatus(double now) {
                        {"protocol_errors", counters_.protocol_errors},
                        {"frames_per_second", double(counters_.frames_mirrored - frames_at_window_) / window},
                        {"incomplete_frames", counters_.incomplete_frames},
+                       {"server_restarts", counters_.server_restarts},
                        {"bus_undecodable", counters_.bus_undecodable},
                        {"cpu_seconds", usage.cpu_seconds},
                        {"resident_bytes", usage.resident_bytes},

@@ -58,6 +58,7 @@ struct GatewayCounters {
   uint64_t clients_dropped = 0;  ///< for not reading, or a queue overflowing
   uint64_t incomplete_frames = 0;
   uint64_t frames_mirrored = 0;
+  uint64_t server_restarts = 0;  ///< a new server id on STATE or STATUS after another one
   int64_t bus_undecodable = 0;  ///< messages on the server's channels that are not their type
 };
 
@@ -101,6 +102,9 @@ class Gateway {
   void OnFrame(const frame_t& manifest);
   void OnParams(const params_t& params);
   void OnAck(const ack_t& ack);
+  /// The server id of a STATE or STATUS: a new one after another means a new server, whose
+  /// frames start again (FrameMirror::ServerRestarted), and a keyframe is asked of it at once.
+  void NoteServer(int64_t server_id);
   void Publish(uint32_t channel, int64_t utime, std::string payload);
   void WakeAll();
   void RecordingEnded(const std::string& why);
@@ -133,6 +137,7 @@ class Gateway {
   std::optional<params_t> params_;  ///< the newest table
   nlohmann::json last_camera_;      ///< the newest camera published, without its frame id
   int incomplete_in_a_row_ = 0;
+  int64_t server_id_ = 0;  ///< the server on the bus, 0 before its first STATE or STATUS
   double last_refresh_ = -1e9;
   double next_status_ = 0;
   double status_window_start_ = 0;
