@@ -37,6 +37,7 @@ set(web_sources
   ${web_dir}/src/params_table.js
   ${web_dir}/src/picture_stream.js
   ${web_dir}/src/plots.js
+  ${web_dir}/src/server_watch.js
   ${web_dir}/src/session_tools.js
   ${web_dir}/src/status_bar.js
   ${web_dir}/src/test_hooks.js

@@ -156,6 +156,11 @@ await run(async () => {
     await page.goto(pageUrl);
     await page.waitForFunction(() => window.flagsim?.framesShown >= 3 && window.flagsim.frame.hashOk, null, { timeout: 20000 });
     check("the page loads, connects and shows hash-checked frames", true);
+    const connection = await waitFor(() => hooks(page, () => {
+      const field = document.querySelector("#status-bar .connection");
+      return field?.textContent.includes("server alive") && field.textContent;
+    }), 10, "the status bar to say the server is alive");
+    check("  the status bar says the server behind the gateway is alive", Boolean(connection), connection);
     await checkPictureIsTheServersFrame(page);
     await checkDragOrbits(page);
     await checkParameterPanel(page);

@@ -20,6 +20,7 @@ import { readParamsTable, readValue } from "./params_table.js";
 import { PictureStream } from "./picture_stream.js";
 import { Plots } from "./plots.js";
 import { SessionTools } from "./session_tools.js";
+import { ServerWatch } from "./server_watch.js";
 import { StatusBar } from "./status_bar.js";
 import { installTestHooks } from "./test_hooks.js";
 import { createHasher } from "./tile_decoder.js";
@@ -51,6 +52,9 @@ async function start() {
     params: [], timeline: null, camera: null, state: null, status: null, lastAck: null, lastError: "",
   };
   const parts = createParts(page);
+  page.serverWatch = new ServerWatch({
+    onRestart: () => toast("The server restarted: a new session, its frames and time from the start", "warning"),
+  });
   const frameShown = installTestHooks(page);
   page.stream = new PictureStream({
     connection, image: page.image, view: page.view,
@@ -66,6 +70,7 @@ async function start() {
   setInterval(() => {
     parts.statusBar.setFps(page.view.shownFps());
     page.view.updateHud();
+    showConnection(page, parts);
   }, kStatusBarPeriod);
   connection.start();
 }
@@ -98,7 +103,9 @@ function wireConnection(page, parts) {
   for (const topic of kJsonTopics) connection.subscribe(topic);
   connection.on("state", (connected, reason, retryIn) => {
     const text = connected ? "connected" : `${reason}; retrying in ${((retryIn ?? 0) / 1000).toFixed(1)} s`;
-    parts.statusBar.setConnection(connected, text);
+    page.gatewayText = text;
+    if (!connected) page.serverWatch.onDisconnect();
+    showConnection(page, parts);
     byId("stage").classList.toggle("offline", !connected);
     byId("stage-empty").textContent = connected ? "waiting for the first frame …" : `no connection to the gateway: ${text}`;
   });
@@ -125,6 +132,17 @@ function wireConnection(page, parts) {
   connection.on("error", (text) => (page.lastError = text));
 }
 
+/// The connection field: the gateway's connection, and whether a server is behind it.
+function showConnection(page, parts) {
+  if (!page.connection.connected) {
+    parts.statusBar.setConnection("disconnected", page.gatewayText ?? "connecting …");
+    return;
+  }
+  const server = page.serverWatch.state();
+  parts.statusBar.setConnection(server === "alive" || server === "restarted" ? "connected" : "no-server",
+                                `connected · ${page.serverWatch.describe()}`);
+}
+
 /// One message of a JSON channel, to the parts that show it.
 function onJsonMessage(page, parts, topic, message) {
   switch (topic) {
@@ -135,6 +153,8 @@ function onJsonMessage(page, parts, topic, message) {
       parts.timelinePanel.tick(message.sim_time ?? null);
       break;
     case "/flag/status":
+      page.serverWatch.onStatus(message);
+      showConnection(page, parts);
       page.status = message;
       parts.statusBar.setModel(message);
       parts.plots.addStatus(message, page.view.shownFps());

@@ -16,8 +16,10 @@ export class StatusBar {
     container.append(this.connection, this.server, this.model, this.frame, this.fps, this.hash, this.ack);
   }
 
-  setConnection(connected, text) {
-    this.connection.className = `field connection ${connected ? "connected" : "disconnected"}`;
+  /// `state`: "connected" (the gateway and a live server), "no-server" (the gateway without one)
+  /// or "disconnected" (no gateway); `text` says which, and why.
+  setConnection(state, text) {
+    this.connection.className = `field connection ${state}`;
     this.connection.textContent = text;
   }
 
