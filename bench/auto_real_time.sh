@@ -23,20 +23,18 @@ done
 build=$(cd "${args[0]:-$root/build}" && pwd)
 seconds=${args[1]:-10}
 if [[ -z ${FLAGSIM_IN_NETNS:-} ]]; then
-  flags=(--grids "$grids" --scenes "$scenes")
-  ((busy)) && flags+=(--busy)
-  FLAGSIM_IN_NETNS=1 exec "$root/scripts/netns-run" -- "$0" "${flags[@]}" "$build" "$seconds"
+  runner=("$root/scripts/netns-run" --)
+  if ((busy)); then
+    runner=("$root/scripts/busy-run" --cores 1 -- "${runner[@]}")
+    echo "a busy neighbour spins on one core throughout"
+  fi
+  FLAGSIM_IN_NETNS=1 exec "${runner[@]}" "$0" --grids "$grids" --scenes "$scenes" "$build" "$seconds"
 fi
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
 flagctl=$build/client/flagctl
 work=$(mktemp -d)
 pids=()
 trap 'kill "${pids[@]}" 2>/dev/null || true; rm -rf "$work"' EXIT
-if ((busy)); then
-  bash -c 'while :; do :; done' &
-  pids+=($!)
-  echo "a busy neighbour spins on one core throughout"
-fi
 
 sim_time() { awk '/^sim time:/ { print $3 }' "$1"; }
 uptime() { awk '/^uptime:/ { print $2 }' "$1"; }

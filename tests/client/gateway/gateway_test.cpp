@@ -11,6 +11,7 @@
 #include "flagsim/checkpoint_t.hpp"
 #include "messages/event_log_reader.hpp"
 #include "server/service/server.hpp"
+#include "tests/client/gateway/fake_client.hpp"
 #include "tests/client/gateway/tile_update_reader.hpp"
 #include "tests/service/simulated_clock.hpp"
 
@@ -18,88 +19,9 @@ namespace flagsim::gateway {
 namespace {
 
 using nlohmann::json;
-
-uint32_t U32(const std::string& bytes, size_t at) {
-  uint32_t value = 0;
-  for (int k = 3; k >= 0; --k) value = value << 8 | uint8_t(bytes[at + k]);
-  return value;
-}
-
-/// A client without a socket: what the protocol gives it, sorted by kind.
-class FakeClient : public GatewayClient {
- public:
-  explicit FakeClient(Gateway& gateway) : gateway_(gateway), id_(gateway.Attach(this)) {
-    protocol_.emplace(gateway, id_);
-    protocol_->Start("test", "1");
-  }
-  ~FakeClient() override {
-    protocol_.reset();
-    gateway_.Detach(id_);
-  }
-  ClientProtocol& protocol() override { return *protocol_; }
-  void Wake() override {}
-  std::string address() const override { return "test"; }
-
-  /// Takes everything waiting, as a socket that keeps up would.
-  void Read() {
-    while (std::optional<Outgoing> message = protocol_->Next()) {
-      const std::string bytes = message->head + (message->body ? *message->body : "");
-      if (!message->binary) {
-        texts.push_back(json::parse(bytes));
-      } else if (bytes[0] == kMessageData) {
-        data[U32(bytes, 1)].push_back(bytes.substr(13));
-      } else if (bytes[0] == kServiceCallResponse) {
-        const uint32_t encoding = U32(bytes, 9);
-        responses[U32(bytes, 5)] = json::parse(bytes.substr(13 + encoding));
-      }
-    }
-  }
-  void Send(const json& message) { protocol_->OnText(message.dump()); }
-  void Subscribe(uint32_t channel) {
-    Send({{"op", "subscribe"}, {"subscriptions", {{{"id", channel}, {"channelId", channel}}}}});
-  }
-  void Call(uint32_t service, uint32_t call, const std::string& request) {
-    std::string frame(1, char(kServiceCallRequest));
-    AppendU32(&frame, service);
-    AppendU32(&frame, call);
-    AppendU32(&frame, 4);
-    protocol_->OnBinary(frame + "json" + request);
-  }
-  /// The texts with `op`, and `id` if given.
-  std::vector<json> Texts(const std::string& op, const std::string& id = "") const {
-    std::vector<json> found;
-    for (const json& text : texts) {
-      if (text["op"] == op && (id.empty() || text.value("id", "") == id)) found.push_back(text);
-    }
-    return found;
-  }
-  json LatestJson(uint32_t channel) const { return json::parse(data.at(channel).back()); }
-
-  std::vector<json> texts;
-  std::map<uint32_t, std::vector<std::string>> data;  ///< by subscription id (= channel id here)
-  std::map<uint32_t, json> responses;                 ///< by call id
-
- private:
-  Gateway& gateway_;
-  int id_;
-  std::optional<ClientProtocol> protocol_;
-};
-
-Scene SmallScene() {
-  Scene scene;
-  scene.camera.width = 320;
-  scene.camera.height = 192;
-  return scene;
-}
-
-/// The gateway's options in these tests: its recordings in the test's directory, its clock the
-/// server's simulated one.
-GatewayOptions OptionsOn(const flagsim::testing::SimulatedClock& clock) {
-  GatewayOptions options;
-  options.record_directory = ::testing::TempDir() + "/gateway_test_recordings";
-  options.clock = clock.Reader();
-  return options;
-}
+using testing::FakeClient;
+using testing::OptionsOn;
+using testing::SmallScene;
 
 // The server steps on a simulated clock, one step per pass of the test's loop; the frame stage
 // and the paced publisher are real threads, so conditions on frames are waited for.
@@ -211,47 +133,6 @@ TEST_F(GatewayTest, ASlowClientSkipsToTheNewestFrameInsteadOfQueueing) {
   EXPECT_EQ(reader.Apply(slow.data[kTilesChannel][1]), "");
   EXPECT_EQ(reader.frame_id(), gateway_.frame()->frame_id);
   EXPECT_GE(slow.protocol().counters().frames_skipped, 5u);
-}
-
-// A server restarted on the same channels numbers its frames from 0 again. The gateway hears a
-// new server id on STATE and forgets the old server's frame: a client watching all along is
-// taken to the new server's frames (before, the new tiles were taken for older ones and skipped
-// until the new ids passed the old, minutes for a long-running server).
-TEST(GatewayRestart, ClientsFollowANewServerWhoseFramesStartAgain) {
-  flagsim::testing::SimulatedClock clock;
-  Bus bus("memq://");
-  Channels channels;
-  Gateway gateway(bus, channels, OptionsOn(clock));
-  FakeClient client(gateway);
-  client.Subscribe(kTilesChannel);
-  testing::TileUpdateReader reader;
-  size_t applied = 0;
-  const auto run_until = [&](Server& server, const std::function<bool()>& done) {
-    const double give_up = MonotonicSeconds() + 60;
-    while (MonotonicSeconds() < give_up) {
-      clock.Step(server);
-      bus.HandleAll();
-      gateway.Tick();
-      client.Read();
-      for (; client.data.count(kTilesChannel) && client.data[kTilesChannel].size() > applied; ++applied) {
-        EXPECT_EQ(reader.Apply(client.data[kTilesChannel][applied]), "") << "update " << applied;
-      }
-      if (done()) return true;
-    }
-    return false;
-  };
-  int64_t last_of_first = -1;
-  {
-    Server first(bus, channels, SmallScene(), clock.ServerOnIt());
-    ASSERT_TRUE(run_until(first, [&] { return reader.frame_id() >= 20; }));
-    last_of_first = reader.frame_id();
-  }
-  Server second(bus, channels, SmallScene(), clock.ServerOnIt());
-  ASSERT_TRUE(run_until(second, [&] { return reader.frame_id() < last_of_first; }))
-      << "the client still shows frame " << reader.frame_id() << " of the old server";
-  EXPECT_EQ(gateway.counters().server_restarts, 1u);
-  ASSERT_TRUE(run_until(second, [&] { return reader.frame_id() >= 3; }));
-  EXPECT_EQ(reader.frame_id(), gateway.frame()->frame_id) << "the client is on the new server's newest frame";
 }
 
 TEST_F(GatewayTest, ACommandServiceIsAnsweredWithTheServersAck) {
