@@ -38,13 +38,6 @@ struct FixedModel {
   int cols, rows;
 };
 
-/// The methods auto may use (auto_model.hpp).
-constexpr std::pair<sim::IntegratorKind, int> kMethods[] = {{sim::IntegratorKind::kSymplecticEuler, 10},
-                                                            {sim::IntegratorKind::kVelocityVerlet, 10},
-                                                            {sim::IntegratorKind::kRk4, 10},
-                                                            {sim::IntegratorKind::kXpbd, 2},
-                                                            {sim::IntegratorKind::kXpbd, 10}};
-
 /// "se 32x24", "verlet 64x48", "rk4 24x18", "xpbd2 128x96": short enough for the table's columns.
 std::string Name(const FixedModel& m) {
   const std::string method = m.integrator == sim::IntegratorKind::kSymplecticEuler ? "se"
@@ -136,7 +129,9 @@ void AutoChoice(const std::string& csv) {
     std::vector<Flown> fixed;
     for (const int cols : model::kGridLadder) {
       const int rows = int(std::lround(cols * double(params.rows) / params.cols));
-      for (const auto& [integrator, iterations] : kMethods) fixed.push_back(Fly(snapshot, {integrator, iterations, cols, rows}, views));
+      for (const model::AutoMethod& method : model::kAutoMethods) {
+        fixed.push_back(Fly(snapshot, {method.integrator, method.iterations, cols, rows}, views));
+      }
     }
     for (std::size_t v = 0; v < views.size(); ++v) {
       const View& view = views[v];

@@ -11,21 +11,6 @@
 namespace flagsim::model {
 namespace {
 
-/// An integrator auto may use, with its iterations where it takes them.
-struct Method {
-  sim::IntegratorKind integrator;
-  int iterations;
-};
-// Implicit Euler and projective dynamics are left out: by the cost model they take 4.85 and
-// 3.2 us a node-step (docs/lab/cost-model.txt), 0.47 and 0.30 of a core at 16 x 12 and beyond
-// real time from 48 x 36, and no view of the presets had them chosen (docs/lab/auto.csv); their
-// probes were two thirds of a decision's time.
-constexpr Method kMethods[] = {{sim::IntegratorKind::kSymplecticEuler, 10},  // first: ExplicitSubsteps' reference
-                               {sim::IntegratorKind::kVelocityVerlet, 10},
-                               {sim::IntegratorKind::kRk4, 10},
-                               {sim::IntegratorKind::kXpbd, 2},
-                               {sim::IntegratorKind::kXpbd, 10}};
-
 bool Explicit(sim::IntegratorKind kind) {
   return kind == sim::IntegratorKind::kSymplecticEuler || kind == sim::IntegratorKind::kVelocityVerlet ||
          kind == sim::IntegratorKind::kRk4 || kind == sim::IntegratorKind::kExplicitEuler ||
@@ -39,12 +24,12 @@ double Spacing(const sim::SimParams& params, int cols, int rows) {
 
 /// What one method does on the grid in force: its substeps and its measured frame defect.
 struct Probe {
-  Method method;
+  AutoMethod method;
   int substeps = 1;
   double time_px = 0;
 };
 
-Probe ProbeMethod(const sim::SimulationSnapshot<float>& snapshot, const render::Camera& camera, Method method,
+Probe ProbeMethod(const sim::SimulationSnapshot<float>& snapshot, const render::Camera& camera, AutoMethod method,
                   int frame_steps) {
   sim::SimulationSnapshot<float> trial = snapshot;
   trial.params.integrator = method.integrator;
@@ -73,7 +58,7 @@ sim::SimulationSnapshot<float> ProbeStart(const sim::SimulationSnapshot<float>& 
   return coarse.Snapshot();
 }
 
-bool SameMethod(const Method& a, const Method& b) {
+bool SameMethod(const AutoMethod& a, const AutoMethod& b) {
   return a.integrator == b.integrator && (!TakesIterations(a.integrator) || a.iterations == b.iterations);
 }
 
@@ -127,10 +112,10 @@ ModelDecisions DecideModels(const sim::SimulationSnapshot<float>& snapshot, cons
   const ClothOnScreen cloth = MeasureClothOnScreen(model, snapshot.state, camera);
   // Every method auto may use, and the one in force, each probed once.
   const sim::SimulationSnapshot<float> start = ProbeStart(snapshot, settings.rows_per_col);
-  const Method in_force{now.integrator, now.solver_iterations};
+  const AutoMethod in_force{now.integrator, now.solver_iterations};
   std::vector<Probe> probes;
   bool in_force_probed = false;
-  for (const Method& method : kMethods) {
+  for (const AutoMethod& method : kAutoMethods) {
     probes.push_back(ProbeMethod(start, camera, method, frame_steps));
     in_force_probed |= SameMethod(method, in_force);
   }

@@ -34,6 +34,22 @@
 
 namespace flagsim::model {
 
+/// An integrator auto may use, with its iterations where it takes them.
+struct AutoMethod {
+  sim::IntegratorKind integrator;
+  int iterations;
+};
+// Implicit Euler and projective dynamics are left out: by the cost model they take 4.85 and
+// 3.2 us a node-step (docs/lab/cost-model.txt), 0.47 and 0.30 of a core at 16 x 12 and beyond
+// real time from 48 x 36, and no view of the presets had them chosen (docs/lab/auto.csv); their
+// probes were two thirds of a decision's time.
+inline constexpr AutoMethod kAutoMethods[] = {
+    {sim::IntegratorKind::kSymplecticEuler, 10},  // first: ExplicitSubsteps' reference
+    {sim::IntegratorKind::kVelocityVerlet, 10},
+    {sim::IntegratorKind::kRk4, 10},
+    {sim::IntegratorKind::kXpbd, 2},
+    {sim::IntegratorKind::kXpbd, 10}};
+
 /// Columns of the grids auto may choose; rows follow AutoSettings::rows_per_col.
 inline constexpr int kGridLadder[] = {16, 24, 32, 48, 64, 96, 128};
 /// Columns of the grid the integrators are probed on, at most: a finer flag is resampled to it.
