@@ -46,6 +46,7 @@ set(web_sources
   ${web_dir}/src/timeline_panel.js
   ${web_dir}/src/toast.js
   ${web_dir}/src/wind_dial.js
+  ${web_dir}/src/wind_form.js
   ${web_dir}/src/wind_panel.js)
 
 # The locked dependencies into web/node_modules (git-ignored), again whenever the lock changes.

@@ -109,6 +109,31 @@ async function checkParameterPanel(page) {
   check("  the box shows the value in force again", Number(await box.inputValue()) === 1500);
 }
 
+async function checkWindPanel(page) {
+  section("the wind panel");
+  const panel = page.locator("#wind-body");
+  const speed = panel.locator('input[title^="ground-plane speed"]');
+  const apply = panel.locator("button.primary");
+  const result = panel.locator(".result");
+  const acksBefore = await hooks(page, () => window.flagsim.lastAck);
+  await speed.fill("");
+  await speed.pressSequentially("abc");  // a number box takes none of it: its value is ""
+  await apply.click();
+  await page.waitForTimeout(500);
+  const refused = await result.textContent();
+  check("a speed typed as text is named and not sent", refused.includes("Speed: empty or not a number"), refused);
+  check("  the box is marked", await speed.evaluate((box) => box.classList.contains("invalid")));
+  const acksAfter = await hooks(page, () => window.flagsim.lastAck);
+  check("  and no WIND went to the server", JSON.stringify(acksAfter) === JSON.stringify(acksBefore), acksAfter);
+  await speed.fill("6");
+  check("  typing in the box clears the mark and the message",
+        !(await speed.evaluate((box) => box.classList.contains("invalid"))) && (await result.textContent()) === "");
+  await apply.click();
+  const ack = await waitFor(() => hooks(page, () => window.flagsim.lastAck?.channel === "WIND" && window.flagsim.lastAck),
+                            10, "the WIND ACK");
+  check("a valid wind is sent and accepted", ack.accepted === true, ack);
+}
+
 async function checkKeyboardReset(page) {
   section("the keyboard");
   await page.locator("#stage").focus();
@@ -164,6 +189,7 @@ await run(async () => {
     await checkPictureIsTheServersFrame(page);
     await checkDragOrbits(page);
     await checkParameterPanel(page);
+    await checkWindPanel(page);
     await checkKeyboardReset(page);
     await checkTimeline(page);
     await page.waitForTimeout(1500);  // the plots fill a little

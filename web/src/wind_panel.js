@@ -1,14 +1,14 @@
 // Wind: the chosen wind (dial + number boxes) and the wind now (from `/flag/state`).
 //
-//   dial pick / boxes --> chosen (vx, vy, vz), gust, ramp --Apply--> `/flag/wind`
+//   dial pick / boxes --> chosen (vx, vy, vz), gust, ramp --Apply, if valid (wind_form.js)-->
+//       `/flag/wind`; an invalid box is marked and named, nothing is sent
 //   /flag/state wind, wind_speed, wind_gust --> the dial's arrow and the "now" line
 //
-// The chosen wind starts as the wind now, until the user changes it.
+// The chosen wind starts as the wind now, until the user changes it. A message about a box
+// clears when that box changes.
 import { el, formatNumber, numberInput } from "./dom.js";
 import { WindDial } from "./wind_dial.js";
-
-const kMaxSpeed = 60;  ///< m/s, the server's limit
-const kMaxRamp = 60;   ///< s
+import { kMaxGust, kMaxRamp, kMaxWindSpeed, readWindForm } from "./wind_form.js";
 
 export class WindPanel {
   constructor({ container, connection }) {
@@ -16,15 +16,16 @@ export class WindPanel {
     this.touched = false;  // the user changed the chosen wind: the state no longer overwrites it
     this.shownWind = "";   // the wind now as last shown
     this.dial = new WindDial({ onPick: (vx, vz) => this.pick(vx, vz) });
-    this.speed = numberInput({ min: 0, max: kMaxSpeed, step: 0.5, title: "ground-plane speed, m/s" });
+    this.speed = numberInput({ min: 0, max: kMaxWindSpeed, step: 0.5, title: "ground-plane speed, m/s" });
     this.direction = numberInput({ min: -180, max: 360, step: 5, title: "direction in the ground plane, degrees from +x (along the flag) toward +z (across)" });
-    this.up = numberInput({ min: -kMaxSpeed, max: kMaxSpeed, step: 0.5, value: 0, title: "vertical component, m/s (y up)" });
-    this.gust = numberInput({ min: 0, max: 1, step: 0.05, value: 0, title: "gust strength: fraction of the speed, 0 .. 1" });
+    this.up = numberInput({ min: -kMaxWindSpeed, max: kMaxWindSpeed, step: 0.5, value: 0, title: "vertical component, m/s (y up)" });
+    this.gust = numberInput({ min: 0, max: kMaxGust, step: 0.05, value: 0, title: "gust strength: fraction of the speed, 0 .. 1" });
     this.ramp = numberInput({ min: 0, max: kMaxRamp, step: 0.5, value: 1, title: "seconds of simulated time to move from the wind now to this one" });
     this.now = el("div", { class: "readout" }, "wind now: –");
     this.result = el("div", { class: "result" });
-    for (const box of [this.speed, this.direction, this.up, this.gust, this.ramp]) {
-      box.addEventListener("input", () => this.onBoxes());
+    this.boxes = { speed: this.speed, direction: this.direction, up: this.up, gust: this.gust, ramp: this.ramp };
+    for (const box of Object.values(this.boxes)) {
+      box.addEventListener("input", () => this.onBoxes(box));
     }
     container.append(
       el("div", { class: "wind-layout" }, this.dial.element,
@@ -51,22 +52,30 @@ export class WindPanel {
     this.dial.setChosen(vx, vz);
   }
 
-  /// Speed and direction typed: the dial follows.
-  onBoxes() {
+  /// A box typed in: its mark and any message about the boxes go; the dial follows a valid
+  /// speed and direction.
+  onBoxes(box) {
     this.touched = true;
-    const [vx, , vz] = this.chosenVelocity();
-    this.dial.setChosen(vx, vz);
+    box.classList.remove("invalid");
+    if (this.result.classList.contains("error")) this.showResult(true, "");
+    const speed = Number(this.speed.value), degrees = Number(this.direction.value);
+    if (this.speed.value.trim() === "" || this.direction.value.trim() === "" || !Number.isFinite(speed) || !Number.isFinite(degrees)) return;
+    const angle = (degrees * Math.PI) / 180;
+    this.dial.setChosen(speed * Math.cos(angle), speed * Math.sin(angle));
   }
 
-  /// [vx, vy, vz] m/s from the boxes.
-  chosenVelocity() {
-    const speed = Number(this.speed.value) || 0;
-    const angle = ((Number(this.direction.value) || 0) * Math.PI) / 180;
-    return [round(speed * Math.cos(angle)), Number(this.up.value) || 0, round(speed * Math.sin(angle))];
+  /// The boxes' texts, by field.
+  texts() {
+    return Object.fromEntries(Object.entries(this.boxes).map(([field, box]) => [field, box.value]));
   }
 
   apply() {
-    const request = { velocity: this.chosenVelocity(), gust: Number(this.gust.value) || 0, ramp: Number(this.ramp.value) || 0 };
+    const { request, problems } = readWindForm(this.texts());
+    if (problems) {
+      for (const { field } of problems) this.boxes[field].classList.add("invalid");
+      this.showResult(false, `not sent: ${problems.map((p) => p.message).join("; ")}`);
+      return;
+    }
     this.result.className = "result pending";
     this.result.textContent = "sending …";
     this.connection.call("/flag/wind", request).then(
@@ -96,9 +105,4 @@ export class WindPanel {
       this.gust.value = formatNumber(state.wind_gust ?? 0, 2);
     }
   }
-}
-
-/// To 1 mm/s, so a typed 6 m/s at 0 degrees sends exactly [6, vy, 0].
-function round(value) {
-  return Math.round(value * 1000) / 1000;
 }
