@@ -49,21 +49,29 @@ export class ParamRow {
     this.slider.addEventListener("input", () => (this.number.value = String(this.scale.toValue(Number(this.slider.value)))));
     this.slider.addEventListener("change", () => this.commit(this.scale.toValue(Number(this.slider.value))));
     this.number.addEventListener("change", () => this.commitNumber());
+    this.number.addEventListener("input", () => this.hideError());  // the refused value is being replaced
     return [this.slider, this.number];
   }
 
   commitNumber() {
     const value = Number(this.number.value);
-    if (this.number.value.trim() === "" || !Number.isFinite(value)) {
-      this.settle(this.beginChange(), this.valueInForce, `'${this.number.value}' is not a number`);
+    if (this.number.value.trim() === "" || !Number.isFinite(value)) {  // a number box holds "" for text
+      const { name, min, max, unit } = this.parameter;
+      this.settle(this.beginChange(), this.valueInForce,
+                  `${name}: empty or not a number; allowed ${formatNumber(min)} .. ${formatNumber(max)}${unit ? ` ${unit}` : ""}`);
       return;
     }
     this.commit(value);
   }
 
   commit(value) {
-    this.error.hidden = true;
+    this.hideError();
     this.onCommit(this, value);
+  }
+
+  hideError() {
+    this.error.hidden = true;
+    this.element.classList.remove("rejected");
   }
 
   /// Shows `value` in the control, but not in a box the user is typing into or under a slider
