@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-scripts/build.sh
+scripts/build.sh --target flagd --target flagctl  # the two binaries, not the tests and benchmarks
 mkdir -p out
 
 # The session itself, run where multicast stays private when possible (a network namespace of

@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-scripts/build.sh
+scripts/build.sh --target flagd --target flagctl  # the two binaries, not the tests and benchmarks
 export LCM_DEFAULT_URL="${LCM_DEFAULT_URL:-udpm://239.255.76.67:7667?ttl=0}"
 build/server/flagd --log-level warn "$@" &
 server=$!
