@@ -53,7 +53,7 @@ void AddMoves(CLI::App* camera, const std::shared_ptr<CameraArguments>& argument
   orbit->add_option("azimuth", a.degrees, "degrees around the vertical axis through the target")->required();
   orbit->add_option("elevation", a.degrees2, "degrees up (negative: down); the eye stops at the ground")
       ->required();
-  add_move("zoom", "move the eye along the line to the target (kept 0.1 .. 200 m from it)",
+  add_move("zoom", "move the eye along the line to the target (kept 0.1 .. 200 m from it, and 0.05 m short of the flag)",
            camera_command_t::ZOOM)
       ->add_option("factor", a.command.factor,
                    "the distance is divided by it: 2 twice as close, 0.5 twice as far")
@@ -76,6 +76,13 @@ void AddMoves(CLI::App* camera, const std::shared_ptr<CameraArguments>& argument
   CLI::App* size = add_move("size", "set the image size", camera_command_t::SET_IMAGE_SIZE);
   size->add_option("width", a.command.width, "px")->required();
   size->add_option("height", a.command.height, "px")->required();
+  CLI::App* zoom_at = add_move(
+      "zoom-at", "move eye and target toward what pixel X Y shows (the flag's nearest point there), stopping short of the flag",
+      camera_command_t::ZOOM_AT);
+  zoom_at->add_option("factor", a.command.factor, "the distance is divided by it: 2 twice as close")->required();
+  zoom_at->add_option("pixel", a.point, "X Y in px from the picture's top left")->expected(2)->required();
+  add_move("frame", "the flag in the middle of the picture, seen along the present line of sight",
+           camera_command_t::FRAME);
   add_move("reset", "back to the scene's camera", camera_command_t::RESET);
 }
 

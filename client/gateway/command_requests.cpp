@@ -43,6 +43,19 @@ std::string ReadVector(const json& object, const char* field, double* vector, bo
   return "";
 }
 
+// "pixel": [x, y] in px (x right, y down from the top left), into vector's x and y.
+std::string ReadPixel(const json& object, double* vector) {
+  const auto found = object.find("pixel");
+  if (found == object.end()) return "pixel: required, [x, y] in px from the picture's top left";
+  if (!found->is_array() || found->size() != 2 || !(*found)[0].is_number() || !(*found)[1].is_number()) {
+    return "pixel: must be [x, y], two numbers in px";
+  }
+  vector[0] = (*found)[0].get<double>();
+  vector[1] = (*found)[1].get<double>();
+  vector[2] = 0;
+  return "";
+}
+
 std::string RequireObject(const json& request) {
   return request.is_object() ? "" : "the request must be a JSON object";
 }
@@ -80,6 +93,7 @@ constexpr CameraOperation kCameraOperations[] = {
     {"look_at", camera_command_t::LOOK_AT},   {"size", camera_command_t::SET_IMAGE_SIZE},
     {"reset", camera_command_t::RESET},       {"zoom", camera_command_t::ZOOM},
     {"eye", camera_command_t::SET_EYE},       {"fov", camera_command_t::SET_FOV},
+    {"frame", camera_command_t::FRAME},       {"zoom_at", camera_command_t::ZOOM_AT},
 };
 
 std::string CameraNames() {
@@ -182,7 +196,8 @@ std::string CameraCommandOf(const json& request, camera_command_t* command) {
   const bool needs_vector = name == "translate" || name == "look_at" || name == "eye";
   problem =
       First(ReadNumber(request, "degrees", &degrees), ReadNumber(request, "degrees2", &degrees2),
-            ReadVector(request, "vector", command->vector, needs_vector),
+            name == "zoom_at" ? ReadPixel(request, command->vector)
+                              : ReadVector(request, "vector", command->vector, needs_vector),
             ReadNumber(request, "factor", &command->factor), ReadInteger(request, "width", &command->width),
             ReadInteger(request, "height", &command->height));
   command->angle = degrees * kRadiansPerDegree;

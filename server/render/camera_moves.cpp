@@ -62,14 +62,18 @@ const char* FieldMovingTheEye(int operation) {
       return "angle";
     case CameraMove::kScale:
     case CameraMove::kZoom:
+    case CameraMove::kZoomAt:
       return "factor";
+    case CameraMove::kFrame:
+      return "operation";
     default:
       return "vector";
   }
 }
 
-/// Checks the move's fields for its operation; "" if it may be applied.
-std::string Check(const CameraMove& m) {
+}  // namespace
+
+std::string CheckCameraMove(const CameraMove& m) {
   using M = CameraMove;
   switch (m.operation) {
     case M::kRotateX:
@@ -96,17 +100,44 @@ std::string Check(const CameraMove& m) {
       const std::string problem = CheckRange("width", m.width, M::kMinSize, M::kMaxWidth, "px");
       return problem.empty() ? CheckRange("height", m.height, M::kMinSize, M::kMaxHeight, "px") : problem;
     }
+    case M::kZoomAt: {
+      const std::string problem = CheckRange("factor", m.factor, M::kMinFactor, M::kMaxFactor, "");
+      if (!problem.empty()) return problem;
+      const std::string x = CheckRange("vector.x", m.vector.x(), 0, M::kMaxWidth, "px (the pixel's column)");
+      return x.empty() ? CheckRange("vector.y", m.vector.y(), 0, M::kMaxHeight, "px (the pixel's row)") : x;
+    }
+    case M::kReset:
+    case M::kFrame:
+      return "";
     default:
       return "operation: " + std::to_string(m.operation) +
-             " is not one; allowed 1 .. 12 (ROTATE_X, ROTATE_Y, ROTATE_Z, TRANSLATE, SCALE, ORBIT, LOOK_AT, "
-             "SET_IMAGE_SIZE, RESET, ZOOM, SET_EYE, SET_FOV)";
+             " is not one; allowed 1 .. 14 (ROTATE_X, ROTATE_Y, ROTATE_Z, TRANSLATE, SCALE, ORBIT, LOOK_AT, "
+             "SET_IMAGE_SIZE, RESET, ZOOM, SET_EYE, SET_FOV, FRAME, ZOOM_AT)";
   }
 }
 
-}  // namespace
+std::string CheckMovedCamera(int operation, const Camera& before, const Camera& moved) {
+  // The view must stay defined: an eye away from its target, not looking straight up or down.
+  const Eigen::Vector3d forward = moved.target - moved.eye;
+  if (!(forward.norm() >= 1e-3) || !(forward.normalized().cross(moved.up).norm() >= 1e-6)) {
+    return "vector: the camera would look at its own position or straight along its up axis";
+  }
+  // The eye stays above the ground, or no lower than it was if it was below already. Orbit and
+  // zoom stop there themselves; kGroundSlack forgives their rounding.
+  const double height = moved.EyeHeight(), floor = std::min(Camera::kMinEyeHeight, before.EyeHeight());
+  if (!(height >= floor - kGroundSlack)) {
+    const std::string allowed = floor < Camera::kMinEyeHeight
+                                    ? Number(floor) + " m (no lower than the eye is now)"
+                                    : Number(Camera::kMinEyeHeight) + " m above the ground";
+    return std::string(FieldMovingTheEye(operation)) + ": the eye would be at y = " + Number(height) +
+           " m in the world, " + (height < 0 ? "under" : "too near") +
+           " the ground (y = 0); allowed at least " + allowed + "; the camera is unchanged";
+  }
+  return "";
+}
 
 std::string ApplyCameraMove(const CameraMove& move, Camera* camera) {
-  std::string problem = Check(move);
+  std::string problem = CheckCameraMove(move);
   if (!problem.empty()) return problem;
   Camera moved = *camera;
   switch (move.operation) {
@@ -145,26 +176,11 @@ std::string ApplyCameraMove(const CameraMove& move, Camera* camera) {
       moved.fov_y = move.angle;
       break;
     default:
-      return "operation: RESET is the session's to apply";
+      return "operation: RESET, FRAME and ZOOM_AT are the session's to apply (it knows the scene and the flag)";
   }
-  // The view must stay defined: an eye away from its target, not looking straight up or down.
-  const Eigen::Vector3d forward = moved.target - moved.eye;
-  if (!(forward.norm() >= 1e-3) || !(forward.normalized().cross(moved.up).norm() >= 1e-6)) {
-    return "vector: the camera would look at its own position or straight along its up axis";
-  }
-  // The eye stays above the ground, or no lower than it was if it was below already. Orbit and
-  // zoom stop there themselves; kGroundSlack forgives their rounding.
-  const double height = moved.EyeHeight(), floor = std::min(Camera::kMinEyeHeight, camera->EyeHeight());
-  if (!(height >= floor - kGroundSlack)) {
-    const std::string allowed = floor < Camera::kMinEyeHeight
-                                    ? Number(floor) + " m (no lower than the eye is now)"
-                                    : Number(Camera::kMinEyeHeight) + " m above the ground";
-    return std::string(FieldMovingTheEye(move.operation)) + ": the eye would be at y = " + Number(height) +
-           " m in the world, " + (height < 0 ? "under" : "too near") +
-           " the ground (y = 0); allowed at least " + allowed + "; the camera is unchanged";
-  }
-  *camera = moved;
-  return "";
+  problem = CheckMovedCamera(move.operation, *camera, moved);
+  if (problem.empty()) *camera = moved;
+  return problem;
 }
 
 }  // namespace flagsim::render

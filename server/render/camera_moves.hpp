@@ -21,7 +21,9 @@ struct CameraMove {
     kReset,
     kZoom,
     kSetEye,
-    kSetFov
+    kSetFov,
+    kFrame,  ///< the flag in the middle of the picture (camera_on_flag.hpp)
+    kZoomAt  ///< zoom by `factor` toward what pixel (vector.x, vector.y) shows (camera_on_flag.hpp)
   };
   int operation = 0;
   double angle = 0;                                  ///< rad: rotations; orbit azimuth; field of view
@@ -37,8 +39,17 @@ struct CameraMove {
   static constexpr int kMinSize = 16, kMaxWidth = 3840, kMaxHeight = 2160;  ///< px
 };
 
+/// Whether the move's fields are valid for its operation: "" or the reason naming the field
+/// and what is allowed.
+std::string CheckCameraMove(const CameraMove& move);
+
+/// Whether `moved` (made by `operation` from `before`) may be taken: its view defined, its eye
+/// above the ground (or no lower than it was); "" or the reason.
+std::string CheckMovedCamera(int operation, const Camera& before, const Camera& moved);
+
 /// Applies `move` to `camera` if it is valid; returns "" or the reason naming the field and
-/// what is allowed (then `camera` is unchanged). kReset is the caller's: it knows the scene.
+/// what is allowed (then `camera` is unchanged). kReset, kFrame and kZoomAt are the caller's: it
+/// knows the scene and the flag.
 /// A move may not put the eye below Camera::kMinEyeHeight above the ground (nor lower it if it
 /// is there already): orbit and zoom stop at the ground, the other moves are rejected.
 std::string ApplyCameraMove(const CameraMove& move, Camera* camera);

@@ -25,7 +25,9 @@ static_assert(render::CameraMove::kRotateX == camera_command_t::ROTATE_X &&
               render::CameraMove::kReset == camera_command_t::RESET &&
               render::CameraMove::kZoom == camera_command_t::ZOOM &&
               render::CameraMove::kSetEye == camera_command_t::SET_EYE &&
-              render::CameraMove::kSetFov == camera_command_t::SET_FOV);
+              render::CameraMove::kSetFov == camera_command_t::SET_FOV &&
+              render::CameraMove::kFrame == camera_command_t::FRAME &&
+              render::CameraMove::kZoomAt == camera_command_t::ZOOM_AT);
 
 /// The timeline operation a KEYFRAME operation code names.
 std::optional<TimelineEdit::Operation> OperationOf(int8_t operation) {

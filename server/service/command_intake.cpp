@@ -205,7 +205,8 @@ std::string CommandIntake::ApplyCamera(const camera_command_t& command) {
   const bool moves = move.operation == Move::kTranslate || move.operation == Move::kOrbit ||
                      move.operation == Move::kLookAt || move.operation == Move::kReset ||
                      move.operation == Move::kZoom || move.operation == Move::kSetEye ||
-                     move.operation == Move::kSetFov;
+                     move.operation == Move::kSetFov || move.operation == Move::kFrame ||
+                     move.operation == Move::kZoomAt;
   if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {false, moves, {}});
   return problem;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "server/render/camera_on_flag.hpp"
 #include "server/scene/parameter_table.hpp"
 #include "server/scene/scene_timeline.hpp"
 
@@ -295,9 +296,20 @@ std::string Session::ApplyCamera(const render::CameraMove& move) {
     ++revision_;
     return "";
   }
-  const std::string problem = render::ApplyCameraMove(move, &scene_.camera);
+  const std::string problem = render::ApplyFlagCameraMove(move, FlagSurfaceNow(), &scene_.camera);
   if (problem.empty()) ++revision_;
   return problem;
+}
+
+// The nodes as the state has them: what the flag-aware camera moves aim at and stop short of.
+render::FlagSurface Session::FlagSurfaceNow() const {
+  const sim::ClothState<float>& state = simulation_.state();
+  render::FlagSurface flag;
+  flag.cols = simulation_.params().cols;
+  flag.rows = simulation_.params().rows;
+  flag.nodes.reserve(state.num_nodes());
+  for (int i = 0; i < state.num_nodes(); ++i) flag.nodes.emplace_back(state.x[i], state.y[i], state.z[i]);
+  return flag;
 }
 
 }  // namespace flagsim

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "server/render/camera_moves.hpp"
+#include "server/render/camera_on_flag.hpp"
 #include "server/scene/scene.hpp"
 #include "server/service/geomorph.hpp"
 #include "server/sim/simulation.hpp"
@@ -112,6 +113,8 @@ class Session {
   static constexpr size_t kMaxAssignments = 64;
 
  private:
+  /// The flag's nodes now, for the camera moves that aim at it (render/camera_on_flag.hpp).
+  render::FlagSurface FlagSurfaceNow() const;
   static constexpr int kNoSegment = -1;
   void FollowTimeline();
   void FixSubsteps(double position);

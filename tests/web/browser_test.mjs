@@ -147,13 +147,53 @@ async function checkKeyboardReset(page) {
   section("the keyboard");
   await page.locator("#stage").focus();
   await page.keyboard.press("y");
-  await waitFor(() => hooks(page, () => window.flagsim.camera.eye[0] !== 2.6 && window.flagsim.camera), 10, "y to turn");
+  const turned = await waitFor(() => hooks(page, () => window.flagsim.camera.eye[0] !== 2.6 && window.flagsim.camera), 10, "y to turn");
+  const boxes = async () => ({
+    eye: await page.locator("#camera-body .triple").nth(0).locator("input").evaluateAll((inputs) => inputs.map((i) => Number(i.value))),
+    target: await page.locator("#camera-body .triple").nth(1).locator("input").evaluateAll((inputs) => inputs.map((i) => Number(i.value))),
+  });
+  await page.waitForTimeout(300);
+  const shown = await boxes();
+  const camera = await hooks(page, () => window.flagsim.camera);
+  const near = (a, b) => a.every((value, k) => Math.abs(value - b[k]) < 1e-3);
+  check("y turns the view, and the Eye and Target boxes show it", near(shown.eye, camera.eye) && near(shown.target, camera.target),
+        { shown, camera: { eye: camera.eye, target: camera.target }, turned: turned.eye });
   await page.keyboard.press("r");
   const reset = await waitFor(() => hooks(page, () => {
     const eye = window.flagsim.camera.eye;
     return Math.abs(eye[0] - 2.6) < 1e-9 && Math.abs(eye[1] - 1.9) < 1e-9 && Math.abs(eye[2] - 4.4) < 1e-9 && eye;
   }), 10, "the scene's camera after r");
   check("r puts the camera back where the scene has it", Boolean(reset), reset);
+}
+
+async function checkZoomAndFrame(page) {
+  section("zoom at the cursor, frame the flag");
+  const span = (camera) => Math.hypot(...camera.eye.map((value, k) => value - camera.target[k]));
+  const before = await hooks(page, () => window.flagsim.camera);
+  const box = await page.locator("#picture").boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  for (let notch = 0; notch < 30; notch += 1) {
+    await page.mouse.wheel(0, -100);
+    await page.waitForTimeout(20);
+  }
+  const zoomed = await waitFor(() => hooks(page, (start) => {
+    const camera = window.flagsim.camera;
+    const ack = window.flagsim.lastAck;
+    return ack?.channel === "CAMERA" && camera.eye.some((value, k) => value !== start.eye[k]) && { camera, ack };
+  }, before), 10, "the camera after the wheel");
+  await page.waitForTimeout(1000);  // the merged moves settle
+  const after = await hooks(page, () => ({ camera: window.flagsim.camera, ack: window.flagsim.lastAck }));
+  check("30 wheel clicks over the flag zoom in toward it, accepted", after.ack.accepted && span(after.camera) < span(before),
+        { before: span(before), after: span(after.camera), ack: after.ack, first: zoomed.ack });
+  await page.locator("#stage").focus();
+  await page.keyboard.press("f");
+  const framed = await waitFor(() => hooks(page, (near) => {
+    const camera = window.flagsim.camera;
+    return camera.target.some((value, k) => Math.abs(value - near.target[k]) > 1e-6) && camera;
+  }, after.camera), 10, "the camera after f");
+  check("f frames the flag: the target moves to its centre, the eye back from it",
+        span(framed) > span(after.camera), { before: span(after.camera), after: span(framed), target: framed.target });
+  await page.keyboard.press("r");
 }
 
 async function checkTimeline(page) {
@@ -200,6 +240,7 @@ await run(async () => {
     await checkParameterPanel(page);
     await checkWindPanel(page);
     await checkKeyboardReset(page);
+    await checkZoomAndFrame(page);
     await checkTimeline(page);
     await page.waitForTimeout(1500);  // the plots fill a little
     await page.screenshot({ path: `${outDir}/live-view.png` });

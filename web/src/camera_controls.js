@@ -2,10 +2,11 @@
 //
 //   drag                          -> orbit (degrees, degrees2) about the target
 //   shift-drag, right- or middle-drag -> translate in the camera's right/up plane (m)
-//   wheel                         -> zoom toward the target (factor 1.1 per notch)
+//   wheel                         -> zoom toward what the cursor points at (factor 1.1 per notch;
+//                                    the server stops it short of the flag)
 //   x/X y/Y z/Z                   -> rotate_x / rotate_y / rotate_z by +-5 degrees
 //   arrows, PageUp/PageDown       -> translate right/left, up/down, toward/away from the target
-//   + / -                         -> zoom in / out;  r -> reset
+//   + / -                         -> zoom in / out;  f -> frame the flag;  r -> reset
 //
 // Moves go through a CallCoalescer: while one call is in flight, further deltas add up into one
 // waiting call per operation. A rejected move shows the server's reason on the picture.
@@ -32,6 +33,7 @@ export function mergeCameraMoves(waiting, next) {
     case "translate":
       return { ...next, vector: combine(waiting.vector, 1, next.vector, 1) };
     case "zoom":
+    case "zoom_at":  // toward the newest pixel
       return { ...next, factor: Math.max(kMinFactor, Math.min(kMaxFactor, waiting.factor * next.factor)) };
     default:
       return next;  // absolute settings: the latest wins
@@ -124,7 +126,9 @@ export class CameraControls {
     event.preventDefault();
     const pixels = event.deltaMode === 1 ? event.deltaY * 33 : event.deltaMode === 2 ? event.deltaY * 500 : event.deltaY;
     if (pixels === 0) return;
-    this.move({ operation: "zoom", factor: kWheelFactorPerNotch ** (-pixels / 100) });
+    const factor = kWheelFactorPerNotch ** (-pixels / 100);
+    const pixel = this.frameView.imagePixelAt(event.clientX, event.clientY);
+    this.move(pixel ? { operation: "zoom_at", factor, pixel } : { operation: "zoom", factor });
   }
 
   /// Keys act unless the user is typing in a form field.
@@ -145,6 +149,7 @@ export class CameraControls {
     if (key === "+" || key === "=") return { operation: "zoom", factor: kWheelFactorPerNotch };
     if (key === "-" || key === "_") return { operation: "zoom", factor: 1 / kWheelFactorPerNotch };
     if (lower === "r") return { operation: "reset" };
+    if (lower === "f") return { operation: "frame" };
     return this.keyTranslate(key);
   }
 

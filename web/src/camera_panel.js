@@ -22,14 +22,15 @@ export class CameraPanel {
       box.addEventListener("change", () => this.send({ operation: "size", width: Number(this.width.value), height: Number(this.height.value) }));
     }
     const reset = el("button", { type: "button", title: "back to the scene's camera (key r)", onclick: () => this.send({ operation: "reset" }) }, "Reset view");
+    const frame = el("button", { type: "button", title: "the flag in the middle of the picture, seen from where the camera looks (key f)", onclick: () => this.send({ operation: "frame" }) }, "Frame flag");
     container.append(
       el("div", { class: "form-grid camera-grid" },
         el("label", {}, "Eye"), el("div", { class: "triple" }, this.eye), el("span", { class: "unit" }, "m"),
         el("label", {}, "Target"), el("div", { class: "triple" }, this.target), el("span", { class: "unit" }, "m"),
         el("label", {}, "FOV"), el("div", { class: "triple" }, this.fov), el("span", { class: "unit" }, "°"),
         el("label", {}, "Size"), el("div", { class: "triple" }, this.width, this.height), el("span", { class: "unit" }, "px")),
-      el("div", { class: "button-row" }, reset,
-        el("span", { class: "hint" }, "drag: orbit · shift/right-drag: pan · wheel, +/−: zoom · x y z (shift: back): rotate · arrows, PgUp/PgDn: move · r: reset")),
+      el("div", { class: "button-row" }, reset, frame,
+        el("span", { class: "hint" }, "drag: orbit · shift/right-drag: pan · wheel: zoom at the cursor · +/−: zoom · x y z (shift: back): rotate · arrows, PgUp/PgDn: move · f: frame the flag · r: reset")),
     );
   }
 

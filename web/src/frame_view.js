@@ -77,6 +77,16 @@ export class FrameView {
     this.canvas.style.imageRendering = devicePixels >= 1.5 ? "pixelated" : "auto";
   }
 
+  /// The picture's pixel (x right, y down, px of the server's image) under a point of the
+  /// window (client px); null outside the picture or before the first frame.
+  imagePixelAt(clientX, clientY) {
+    const box = this.canvas.getBoundingClientRect();
+    if (box.width === 0 || box.height === 0) return null;
+    const x = ((clientX - box.left) / box.width) * this.canvas.width;
+    const y = ((clientY - box.top) / box.height) * this.canvas.height;
+    return x >= 0 && y >= 0 && x <= this.canvas.width && y <= this.canvas.height ? [x, y] : null;
+  }
+
   /// The picture as a PNG blob (the canvas holds its exact pixels).
   toPngBlob() {
     return new Promise((resolve) => this.canvas.toBlob(resolve, "image/png"));
