@@ -242,6 +242,15 @@ await run(async () => {
     await checkKeyboardReset(page);
     await checkZoomAndFrame(page);
     await checkTimeline(page);
+    section("the shared camera");
+    const second = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+    await second.goto(pageUrl);
+    const shared = await waitFor(() => hooks(page, () => {
+      const text = document.querySelector(".shared-camera")?.textContent ?? "";
+      return text.includes("1 other viewer sees") && text;
+    }), 15, "the camera panel to count the second viewer");
+    check("a second viewer is told on the first page: the camera is shared", Boolean(shared), shared);
+    await second.close();
     await page.waitForTimeout(1500);  // the plots fill a little
     await page.screenshot({ path: `${outDir}/live-view.png` });
     check(`a screenshot of the page: ${outDir}/live-view.png`, true);

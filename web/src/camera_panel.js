@@ -23,7 +23,11 @@ export class CameraPanel {
     }
     const reset = el("button", { type: "button", title: "back to the scene's camera (key r)", onclick: () => this.send({ operation: "reset" }) }, "Reset view");
     const frame = el("button", { type: "button", title: "the flag in the middle of the picture, seen from where the camera looks (key f)", onclick: () => this.send({ operation: "frame" }) }, "Frame flag");
+    // One server draws one picture: its camera is every viewer's (the design keeps a single
+    // renderer, so that what is recorded and replayed is the picture everyone saw).
+    this.shared = el("div", { class: "hint shared-camera" }, "This camera is shared: every viewer sees and moves the same view.");
     container.append(
+      this.shared,
       el("div", { class: "form-grid camera-grid" },
         el("label", {}, "Eye"), el("div", { class: "triple" }, this.eye), el("span", { class: "unit" }, "m"),
         el("label", {}, "Target"), el("div", { class: "triple" }, this.target), el("span", { class: "unit" }, "m"),
@@ -42,6 +46,14 @@ export class CameraPanel {
 
   send(request) {
     this.controls.move(request);
+  }
+
+  /// `/gateway/status`'s client count: how many viewers share the camera.
+  setViewers(count) {
+    const others = Math.max(0, count - 1);
+    this.shared.textContent = others === 0
+      ? "This camera is shared: every viewer sees and moves the same view (no one else is watching now)."
+      : `This camera is shared: ${others} other viewer${others === 1 ? " sees" : "s see"} and move${others === 1 ? "s" : ""} the same view.`;
   }
 
   /// Shows the camera of the newest frame.

@@ -8,6 +8,7 @@
 //   /flag/status   -> Plots
 //   /flag/timeline -> TimelinePanel
 //   /flag/acks     -> status bar (last ACK)
+//   /gateway/status -> the camera panel (how many viewers share the camera)
 import "uplot/dist/uPlot.min.css";  // uPlot's own rules first, the page's after them
 import "../style.css";
 import { CameraControls } from "./camera_controls.js";
@@ -29,7 +30,7 @@ import { readTimeline } from "./timeline_model.js";
 import { createToaster } from "./toast.js";
 import { WindPanel } from "./wind_panel.js";
 
-const kJsonTopics = ["/flag/state", "/flag/status", "/flag/params", "/flag/timeline", "/flag/camera", "/flag/acks"];
+const kJsonTopics = ["/flag/state", "/flag/status", "/flag/params", "/flag/timeline", "/flag/camera", "/flag/acks", "/gateway/status"];
 const kStatusBarPeriod = 500;  ///< ms between updates of the frames-shown rate
 const textDecoder = new TextDecoder();
 const byId = (id) => document.getElementById(id);
@@ -169,6 +170,9 @@ function onJsonMessage(page, parts, topic, message) {
     case "/flag/camera":
       page.camera = message;
       parts.cameraPanel.update(message);
+      break;
+    case "/gateway/status":
+      if (Number.isFinite(message.clients)) parts.cameraPanel.setViewers(message.clients);
       break;
     case "/flag/acks":
       page.lastAck = message;
