@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "client/gateway/refusal_page.hpp"
 #include "client/gateway/websocket_session.hpp"
 
 namespace flagsim::gateway {
@@ -95,9 +96,15 @@ void HttpSession::ServeRecording(const Request& request, const HttpRoute& route)
 
 void HttpSession::Refuse(const Request& request, http::status status, const std::string& reason) {
   http::response<http::string_body> response{status, request.version()};
-  response.set(http::field::content_type, "text/plain; charset=utf-8");
   if (status == http::status::unauthorized) response.set(http::field::www_authenticate, "Bearer");
-  response.body() = reason + "\n";
+  const auto accept = request.find(http::field::accept);
+  if (accept != request.end() && WantsHtml(std::string_view(accept->value().data(), accept->value().size()))) {
+    response.set(http::field::content_type, "text/html; charset=utf-8");
+    response.body() = RefusalHtml(static_cast<int>(status), reason);
+  } else {
+    response.set(http::field::content_type, "text/plain; charset=utf-8");
+    response.body() = reason + "\n";
+  }
   response.prepare_payload();
   response.keep_alive(false);
   Send(std::move(response));

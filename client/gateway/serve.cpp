@@ -1,5 +1,9 @@
 #include "client/gateway/serve.hpp"
 
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <net/if.h>
+#include <netinet/in.h>
 #include <unistd.h>
 
 #include <boost/asio.hpp>
@@ -7,6 +11,8 @@
 #include <chrono>
 #include <cstdio>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "client/gateway/gateway.hpp"
 #include "client/gateway/http_session.hpp"
@@ -55,15 +61,25 @@ tcp::endpoint ParseListen(const std::string& listen) {
 
 namespace {
 
-/// The host part of the URLs to print.
-std::string UrlHost(const tcp::endpoint& endpoint) {
+/// The host parts of the URLs to print: the address listened on; for any address (0.0.0.0, ::),
+/// this machine's own non-loopback IPv4 addresses (a host name may not resolve on the viewer's
+/// machine), then 127.0.0.1 for this one.
+std::vector<std::string> UrlHosts(const tcp::endpoint& endpoint) {
   const net::ip::address address = endpoint.address();
-  if (address.is_unspecified()) {
-    char name[256] = "localhost";
-    gethostname(name, sizeof(name) - 1);
-    return name;
+  if (!address.is_unspecified()) return {address.is_v6() ? "[" + address.to_string() + "]" : address.to_string()};
+  std::vector<std::string> hosts;
+  ifaddrs* interfaces = nullptr;
+  if (getifaddrs(&interfaces) == 0) {
+    for (const ifaddrs* i = interfaces; i; i = i->ifa_next) {
+      if (!i->ifa_addr || i->ifa_addr->sa_family != AF_INET || (i->ifa_flags & IFF_LOOPBACK)) continue;
+      char text[INET_ADDRSTRLEN] = "";
+      inet_ntop(AF_INET, &reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr, text, sizeof(text));
+      hosts.push_back(text);
+    }
+    freeifaddrs(interfaces);
   }
-  return address.is_v6() ? "[" + address.to_string() + "]" : address.to_string();
+  hosts.push_back("127.0.0.1");
+  return hosts;
 }
 
 class EventLoop {
@@ -145,11 +161,13 @@ int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
     std::fprintf(stderr, "flagctl serve: cannot listen on %s: %s\n", options.listen.c_str(), error.what());
     return 1;
   }
-  const std::string host = UrlHost(endpoint) + ":" + std::to_string(loop->local_endpoint().port());
   const std::string query = context.access.token.empty() ? "" : "?token=" + context.access.token;
-  std::printf("flagctl serve: live view   http://%s/%s\n", host.c_str(), query.c_str());
-  std::printf("flagctl serve: Foxglove    ws://%s/%s  (Foxglove WebSocket connection)\n", host.c_str(),
-              query.c_str());
+  for (const std::string& name : UrlHosts(endpoint)) {
+    const std::string host = name + ":" + std::to_string(loop->local_endpoint().port());
+    std::printf("flagctl serve: live view   http://%s/%s\n", host.c_str(), query.c_str());
+    std::printf("flagctl serve: Foxglove    ws://%s/%s  (Foxglove WebSocket connection)\n", host.c_str(),
+                query.c_str());
+  }
   std::printf("flagctl serve: bus %s, prefix %s; recordings go to %s/\n", bus.url().c_str(),
               channels.prefix.c_str(), options.record_directory.c_str());
   std::fflush(stdout);
