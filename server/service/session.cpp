@@ -247,7 +247,14 @@ bool Session::Step() {
 
 // position => controls => scene (within limits) => simulation (light path); position += speed dt
 void Session::FollowTimeline() {
-  sim::Timeline& timeline = scene_.timeline;
+  ApplyTimelineControls();
+  scene_.timeline.Advance(scene_.sim.dt);
+}
+
+// What the keys set at the timeline's position: wind, parameters and camera, with substeps
+// fixed for the segment.
+void Session::ApplyTimelineControls() {
+  const sim::Timeline& timeline = scene_.timeline;
   const double position = timeline.position();
   if (timeline.SegmentAt(position) != substeps_segment_) FixSubsteps(position);
   const render::Camera camera = scene_.camera;
@@ -257,7 +264,6 @@ void Session::FollowTimeline() {
       scene_.camera.fov_y != camera.fov_y) {
     ++revision_;
   }
-  timeline.Advance(scene_.sim.dt);
 }
 
 // The segment's least and most settings => substeps stable for all between, fixed till it ends.
@@ -287,6 +293,10 @@ std::string Session::ApplyTimeline(const TimelineEdit& edit) {
   }
   scene_.timeline = std::move(next);
   substeps_segment_ = kNoSegment;
+  // Scrubbing a paused timeline previews it: what the keys set where it now stands.
+  if (edit.operation == TimelineEdit::kSeek && !scene_.timeline.playing() && !scene_.timeline.keys().empty()) {
+    ApplyTimelineControls();
+  }
   return "";
 }
 

@@ -117,6 +117,7 @@ class Session {
   render::FlagSurface FlagSurfaceNow() const;
   static constexpr int kNoSegment = -1;
   void FollowTimeline();
+  void ApplyTimelineControls();
   void FixSubsteps(double position);
   sim::WindControl WindNow() const;
 

@@ -93,6 +93,20 @@ TEST(Session, ThePausedTimelineLeavesTheControlsToCommands) {
   EXPECT_EQ(session.scene().timeline.position(), position);
 }
 
+// Scrubbing a paused timeline previews it: the controls become what the keys set at the new
+// position, at once, and stay there (the timeline does not move while paused).
+TEST(Session, ASeekWhilePausedAppliesWhatTheKeysSetThere) {
+  Session session(Stiffening());
+  for (int i = 0; i < 10; ++i) session.Step();
+  ASSERT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kPause)), "");
+  ASSERT_EQ(session.ApplyTimeline(Operation(TimelineEdit::kSeek, 3)), "");
+  EXPECT_NEAR(session.scene().sim.forces.stiffness, 2500, 1e-9) << "1000 + 500/s at 3 s";
+  EXPECT_EQ(session.simulation().params().forces.stiffness, session.scene().sim.forces.stiffness);
+  for (int i = 0; i < 10; ++i) session.Step();
+  EXPECT_NEAR(session.scene().sim.forces.stiffness, 2500, 1e-9);
+  EXPECT_EQ(session.scene().timeline.position(), 3);
+}
+
 // Explicit steps: on entering a segment the substeps are fixed for its stiffest setting, so a
 // flag stiffened tenfold never needs the guard.
 TEST(Session, SubstepsAreFixedPerSegmentForItsStiffestSetting) {

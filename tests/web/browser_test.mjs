@@ -198,10 +198,23 @@ async function checkZoomAndFrame(page) {
 
 async function checkTimeline(page) {
   section("the timeline");
+  const wind = page.locator("#wind-body");
+  await wind.locator('input[title^="ground-plane speed"]').fill("4");  // typed, not applied
+  await wind.locator('input[title^="direction"]').fill("90");
+  await wind.locator('input[title^="vertical"]').fill("0.5");
+  const pictureBefore = await page.locator("#picture").boundingBox();
   await page.locator("#timeline-body button.primary").click();  // a key at the position now
   const keys = await waitFor(() => hooks(page, () => window.flagsim.timeline?.keys.length >= 1 && window.flagsim.timeline.keys),
                              10, "TIMELINE with a key");
   check("a key added from the page is on TIMELINE", keys.length === 1 && keys[0].wind !== undefined, keys);
+  const velocity = keys[0].wind?.velocity ?? [];
+  check("  with the wind the panel shows (typed, not yet applied), not the server's",
+        Math.abs(velocity[0]) < 1e-9 && velocity[1] === 0.5 && velocity[2] === 4, velocity);
+  await page.waitForTimeout(300);
+  const pictureAfter = await page.locator("#picture").boundingBox();
+  check("  selecting it moves nothing on the page (the picture keeps its size)",
+        Math.abs(pictureAfter.height - pictureBefore.height) < 0.5 && Math.abs(pictureAfter.y - pictureBefore.y) < 0.5,
+        { before: pictureBefore, after: pictureAfter });
   check("  flagctl keyframe list shows it", /1 key/.test(await flagctlRun("keyframe", "list")));
   // A second key an hour on: a timeline of one key ends as soon as it has glided there, so the
   // page might never see it playing on a slow machine; this one plays until paused.
@@ -214,6 +227,15 @@ async function checkTimeline(page) {
   await page.locator("#timeline-body button.play").click();
   await waitFor(() => hooks(page, () => window.flagsim.timeline?.playing === false), 10, "TIMELINE paused");
   check("  and Pause pauses it", true);
+  await flagctlRun("keyframe", "seek", "3600");
+  await waitFor(() => hooks(page, () => window.flagsim.timeline?.position === 3600), 10, "TIMELINE at its end");
+  await page.locator("#timeline-body button.play").click();
+  const again = await waitFor(() => hooks(page, () => {
+    const timeline = window.flagsim.timeline;
+    return timeline?.playing && timeline.position < 3600 && timeline;
+  }), 10, "TIMELINE playing from the start");
+  check("Play at the end plays it again from the start", again.position < 60, again.position);
+  await page.locator("#timeline-body button.play").click();
 }
 
 await run(async () => {

@@ -79,16 +79,17 @@ async function start() {
 /// The panels, each given what it reads and the connection it sends through.
 function createParts(page) {
   const { connection, toast } = page;
+  const windPanel = new WindPanel({ container: byId("wind-body"), connection });
   const cameraControls = new CameraControls({ stage: byId("stage"), frameView: page.view, connection, getCamera: () => page.camera, toast });
   return {
     statusBar: new StatusBar(byId("status-bar")),
     cameraControls,
     cameraPanel: new CameraPanel({ container: byId("camera-body"), cameraControls, getCamera: () => page.camera }),
     paramPanel: new ParamPanel({ container: byId("param-body"), connection, toast }),
-    windPanel: new WindPanel({ container: byId("wind-body"), connection }),
+    windPanel,
     timelinePanel: new TimelinePanel({
       container: byId("timeline-body"), connection, toast,
-      current: () => ({ state: page.state, params: page.params, camera: page.camera }),
+      current: () => ({ wind: windPanel.chosenWind(), params: page.params, camera: page.camera }),
     }),
     plots: new Plots({ container: byId("plots") }),
     sessionTools: new SessionTools({

@@ -4,13 +4,17 @@
 //   /flag/timeline --update--> markers, play state, loop, speed
 //   /flag/state sim_time --tick--> the playhead (positionAt between messages)
 //   click the bar --> seek (time);  play/pause, loop, speed --> play / pause / loop / speed
-//   "Add key" --> add { time: position now, law, wind?, parameters?, camera? } from the controls now
-//   a marker --> selected: change its law (change, the controls kept) or remove it
+//   "Add key" --> add { time: position now, law, wind?, parameters?, camera? } from what the
+//       panels show (the wind panel's chosen wind, checked as Apply checks it)
+//   Play at the end of a timeline that does not loop --> seek 0, then play (from the start)
+//   a marker --> selected: change its law (change, the controls kept) or remove it; the row for
+//       it is always there (no layout jump), idle until a key is selected
 import { el, formatNumber, numberInput, selectInput } from "./dom.js";
 import { kLaws, positionAt } from "./timeline_model.js";
 
 export class TimelinePanel {
-  /// `current()` returns { state, params, camera }: the newest of each, for a new key.
+  /// `current()` returns { wind, params, camera }: what the panels show, for a new key (wind:
+  /// { request } or { problems }, as wind_form.js reads the wind panel).
   constructor({ container, connection, current, toast }) {
     this.connection = connection;
     this.current = current;
@@ -69,7 +73,8 @@ export class TimelinePanel {
     this.selectedLaw.addEventListener("change", () => this.changeLaw());
     this.selectedText = el("span", { class: "selected-key-text" });
     const remove = el("button", { type: "button", class: "danger", onclick: () => this.removeKey() }, "Remove");
-    this.selectedRow = el("div", { class: "timeline-selected", hidden: true },
+    this.removeButton = remove;
+    this.selectedRow = el("div", { class: "timeline-selected idle" },
       this.selectedText, el("label", { class: "inline" }, "law", this.selectedLaw), remove);
   }
 
@@ -83,16 +88,33 @@ export class TimelinePanel {
     );
   }
 
-  togglePlay() {
-    this.send({ operation: this.timeline?.playing ? "pause" : "play" });
+  /// Play, or pause; at the end of a timeline that does not loop, play starts it again from 0.
+  async togglePlay() {
+    const timeline = this.timeline;
+    if (timeline?.playing) {
+      this.send({ operation: "pause" });
+      return;
+    }
+    const atEnd = timeline && !timeline.loop && timeline.lastKeyTime > 0 &&
+                  positionAt(timeline, this.simTime) >= timeline.lastKeyTime - 1e-9;
+    if (atEnd) {
+      const answer = await this.send({ operation: "seek", time: 0 });
+      if (answer?.accepted === false) return;
+      this.toast("Timeline: at its end; playing again from 0 s", "info");
+    }
+    this.send({ operation: "play" });
   }
 
-  /// A key at the position now, setting what is ticked, from the controls now.
+  /// A key at the position now, setting what is ticked, from what the panels show.
   addKey() {
-    const { state, params, camera } = this.current();
+    const { wind, params, camera } = this.current();
     const key = { time: Number(positionAt(this.timeline, this.simTime).toFixed(3)), law: this.law.value };
-    if (this.setsWind.checked && state?.wind) {
-      key.wind = { velocity: [state.wind.x, state.wind.y, state.wind.z], gust: state.wind_gust ?? 0 };
+    if (this.setsWind.checked && wind?.problems) {
+      this.toast(`Timeline: the wind panel's ${wind.problems.map((p) => p.message).join("; ")}`);
+      return;
+    }
+    if (this.setsWind.checked && wind?.request) {
+      key.wind = { velocity: wind.request.velocity, gust: wind.request.gust };
     }
     if (this.setsParameters.checked && params) {
       key.parameters = Object.fromEntries(params.filter((p) => p.animatable).map((p) => [p.name, p.value]));
@@ -167,8 +189,14 @@ export class TimelinePanel {
 
   renderSelected() {
     const key = this.timeline?.keys.find((each) => each.time === this.selectedTime);
-    this.selectedRow.hidden = !key;
-    if (!key) return;
+    this.selectedRow.classList.toggle("idle", !key);
+    this.selectedLaw.disabled = !key;
+    this.removeButton.disabled = !key;
+    if (!key) {
+      setText(this.selectedText, "Select a key on the bar to see it, change its law or remove it.");
+      this.selectedText.title = "";
+      return;
+    }
     this.selectedText.textContent = describeKey(key);
     this.selectedText.title = describeKey(key);
     this.selectedLaw.value = key.law;

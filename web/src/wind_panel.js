@@ -69,8 +69,13 @@ export class WindPanel {
     return Object.fromEntries(Object.entries(this.boxes).map(([field, box]) => [field, box.value]));
   }
 
+  /// The wind the panel shows, as Apply would send it: { request } or { problems }.
+  chosenWind() {
+    return readWindForm(this.texts());
+  }
+
   apply() {
-    const { request, problems } = readWindForm(this.texts());
+    const { request, problems } = this.chosenWind();
     if (problems) {
       for (const { field } of problems) this.boxes[field].classList.add("invalid");
       this.showResult(false, `not sent: ${problems.map((p) => p.message).join("; ")}`);
