@@ -45,6 +45,7 @@ set(web_sources
   ${web_dir}/src/timeline_model.js
   ${web_dir}/src/timeline_panel.js
   ${web_dir}/src/toast.js
+  ${web_dir}/src/view_link.js
   ${web_dir}/src/wind_dial.js
   ${web_dir}/src/wind_form.js
   ${web_dir}/src/wind_panel.js)

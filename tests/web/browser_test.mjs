@@ -264,14 +264,27 @@ await run(async () => {
     await checkKeyboardReset(page);
     await checkZoomAndFrame(page);
     await checkTimeline(page);
-    section("the shared camera");
+    section("the shared camera, and a view as a link");
     const second = await browser.newPage({ viewport: { width: 1000, height: 700 } });
-    await second.goto(pageUrl);
+    const linked = new URL(pageUrl);
+    linked.searchParams.set("view", "3,2.5,5,0.75,2,0,50");
+    await second.goto(linked.toString());
     const shared = await waitFor(() => hooks(page, () => {
       const text = document.querySelector(".shared-camera")?.textContent ?? "";
       return text.includes("1 other viewer sees") && text;
     }), 15, "the camera panel to count the second viewer");
     check("a second viewer is told on the first page: the camera is shared", Boolean(shared), shared);
+    const view = await waitFor(() => hooks(page, () => {
+      const camera = window.flagsim.camera;
+      return camera.eye[0] === 3 && camera.eye[1] === 2.5 && camera.eye[2] === 5 && camera.target[0] === 0.75 &&
+             Math.abs(camera.fov - 50) < 1e-9 && camera;
+    }), 15, "the linked view in force");
+    check("  the view in the second viewer's link is the one every viewer sees", Boolean(view), view);
+    await page.getByRole("button", { name: "Link to view" }).click();
+    await page.waitForTimeout(300);
+    const address = new URL(page.url());
+    check("  Link to view puts this view in the address", address.searchParams.get("view") === "3,2.5,5,0.75,2,0,50",
+          address.search);
     await second.close();
     await page.waitForTimeout(1500);  // the plots fill a little
     await page.screenshot({ path: `${outDir}/live-view.png` });

@@ -22,6 +22,7 @@ import { PictureStream } from "./picture_stream.js";
 import { Plots } from "./plots.js";
 import { SessionTools } from "./session_tools.js";
 import { ServerWatch } from "./server_watch.js";
+import { readViewLink } from "./view_link.js";
 import { StatusBar } from "./status_bar.js";
 import { installTestHooks } from "./test_hooks.js";
 import { createHasher } from "./tile_decoder.js";
@@ -96,6 +97,8 @@ function createParts(page) {
       container: byId("session-tools"), connection, toast, withToken,
       frame: () => ({ id: page.image.frameId, hashOk: page.image.hashOk }),
       pngBlob: () => page.view.toPngBlob(),
+      camera: () => page.camera,
+      stage: byId("stage"),
     }),
   };
 }
@@ -132,6 +135,21 @@ function wireConnection(page, parts) {
     if (status.level >= 1) page.toast(status.message, status.level >= 2 ? "error" : "warning");
   });
   connection.on("error", (text) => (page.lastError = text));
+}
+
+/// A link's view (`?view=`, view_link.js), put in force once, when the server's camera is first
+/// heard (the connection is up by then).
+function openLinkedView(page, parts) {
+  if (page.linkedViewDone) return;
+  page.linkedViewDone = true;
+  const { view, problem } = readViewLink(window.location.search);
+  if (problem) page.toast(problem, "error");
+  if (!view) return;
+  for (const request of [{ operation: "eye", vector: view.eye }, { operation: "look_at", vector: view.target },
+                         { operation: "fov", degrees: view.fov }]) {
+    parts.cameraControls.move(request);
+  }
+  page.toast("The linked view is in force (the camera is shared: every viewer sees it)");
 }
 
 /// The connection field: the gateway's connection, and whether a server is behind it.
@@ -171,6 +189,7 @@ function onJsonMessage(page, parts, topic, message) {
     case "/flag/camera":
       page.camera = message;
       parts.cameraPanel.update(message);
+      openLinkedView(page, parts);
       break;
     case "/gateway/status":
       if (Number.isFinite(message.clients)) parts.cameraPanel.setViewers(message.clients);

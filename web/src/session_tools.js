@@ -1,15 +1,21 @@
-// Snapshot and record.
+// Snapshot, record, a link to the view, full screen.
 //
 //   Snapshot --(the picture's frame hash checked)--> the canvas as frame-ID.png, downloaded
+//   Link     --> the address with this view (view_link.js), in the address bar and the clipboard
+//   Full screen --> the picture alone on the screen (Esc leaves)
 //   Record   --`/flag/record` start--> polled with status each second --stop--> a download link to
 //            its `url`, with the page's token
 import { el, formatBytes, formatNumber } from "./dom.js";
+import { viewLinkFor } from "./view_link.js";
 
 const kPollPeriod = 1000;  ///< ms between record status polls
 
 export class SessionTools {
-  /// `frame()` returns { id, hashOk }; `pngBlob()` the picture as PNG; `withToken(url)`.
-  constructor({ container, connection, frame, pngBlob, withToken, toast }) {
+  /// `frame()` returns { id, hashOk }; `pngBlob()` the picture as PNG; `withToken(url)`;
+  /// `camera()` the newest `/flag/camera`; `stage` the element full screen shows.
+  constructor({ container, connection, frame, pngBlob, withToken, toast, camera, stage }) {
+    this.camera = camera;
+    this.stage = stage;
     this.connection = connection;
     this.frame = frame;
     this.pngBlob = pngBlob;
@@ -21,7 +27,9 @@ export class SessionTools {
     this.recordButton = el("button", { type: "button", class: "record", title: "record every channel of the server to an LCM log", onclick: () => this.toggleRecord() }, "Record");
     this.recordText = el("span", { class: "record-text" });
     this.download = el("a", { class: "download", hidden: true });
-    container.append(this.snapshotButton, this.recordButton, this.recordText, this.download);
+    const link = el("button", { type: "button", title: "a link that opens this view (eye, target, field of view): in the address bar and copied", onclick: () => this.linkToView() }, "Link to view");
+    const fullScreen = el("button", { type: "button", title: "the picture alone on the screen; Esc leaves", onclick: () => this.fullScreen() }, "Full screen");
+    container.append(link, fullScreen, this.snapshotButton, this.recordButton, this.recordText, this.download);
     this.updateFrame();
   }
 
@@ -29,6 +37,28 @@ export class SessionTools {
   updateFrame() {
     const frame = this.frame();
     this.snapshotButton.disabled = !frame.hashOk;
+  }
+
+  /// The address of this view into the address bar, and the clipboard where the page may write.
+  async linkToView() {
+    const camera = this.camera();
+    if (!camera?.eye) {
+      this.toast("Link: no camera yet");
+      return;
+    }
+    const link = viewLinkFor(window.location, camera);
+    window.history.replaceState(null, "", link);
+    try {
+      await navigator.clipboard.writeText(link);
+      this.toast("Link to this view copied (and in the address bar)");
+    } catch {
+      this.toast("Link to this view in the address bar (the clipboard is closed to this page)");
+    }
+  }
+
+  fullScreen() {
+    if (document.fullscreenElement) document.exitFullscreen();
+    else this.stage.requestFullscreen?.().catch((error) => this.toast(`Full screen: ${error.message}`));
   }
 
   async snapshot() {
