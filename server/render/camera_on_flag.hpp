@@ -43,8 +43,13 @@ inline constexpr double kFrameFill = 0.8;       ///< of the narrower field of vi
 /// none if that pixel shows no flag.
 std::optional<Eigen::Vector3d> FlagUnderPixel(const Camera& camera, const FlagSurface& flag, double px, double py);
 
-/// Applies kZoom, kZoomAt or kFrame to `camera` as above; "" or the reason (then `camera` is
-/// unchanged).
+/// Whether `operation` needs to know where the flag is: kZoom, kZoomAt, kFrame.
+inline bool AimsAtTheFlag(int operation) {
+  return operation == CameraMove::kZoom || operation == CameraMove::kZoomAt || operation == CameraMove::kFrame;
+}
+
+/// Applies kZoom, kZoomAt or kFrame to `camera` as above (any other move as ApplyCameraMove
+/// does); "" or the reason (then `camera` is unchanged).
 std::string ApplyFlagCameraMove(const CameraMove& move, const FlagSurface& flag, Camera* camera);
 
 }  // namespace flagsim::render

@@ -306,7 +306,9 @@ std::string Session::ApplyCamera(const render::CameraMove& move) {
     ++revision_;
     return "";
   }
-  const std::string problem = render::ApplyFlagCameraMove(move, FlagSurfaceNow(), &scene_.camera);
+  const std::string problem = render::AimsAtTheFlag(move.operation)
+                                  ? render::ApplyFlagCameraMove(move, FlagSurfaceNow(), &scene_.camera)
+                                  : render::ApplyCameraMove(move, &scene_.camera);
   if (problem.empty()) ++revision_;
   return problem;
 }
