@@ -75,4 +75,25 @@ class Bus : public Publisher {
   std::atomic<uint64_t> bytes_published_{0};
 };
 
+/// The subscriptions an object makes on a bus, dropped when it goes: its handlers capture it, so
+/// a bus that outlives it (a server restarted on the same bus in one process) must not call them.
+class BusSubscriptions {
+ public:
+  explicit BusSubscriptions(Bus& bus) : bus_(bus) {}
+  ~BusSubscriptions() {
+    for (const size_t token : tokens_) bus_.Unsubscribe(token);
+  }
+  BusSubscriptions(const BusSubscriptions&) = delete;
+  BusSubscriptions& operator=(const BusSubscriptions&) = delete;
+
+  /// Bus::Subscribe, kept until this goes.
+  void Subscribe(const std::string& channel, Bus::Handler handler, int queue_capacity = 30) {
+    tokens_.push_back(bus_.Subscribe(channel, std::move(handler), queue_capacity));
+  }
+
+ private:
+  Bus& bus_;
+  std::vector<size_t> tokens_;
+};
+
 }  // namespace flagsim

@@ -77,7 +77,7 @@ CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& sessio
 template <class Command>
 void CommandIntake::Subscribe(const std::string& channel,
                               std::string (CommandIntake::*apply)(const Command&)) {
-  bus_.Subscribe(
+  subscriptions_.Subscribe(
       channel,
       [this, apply](const std::string& name, const uint8_t* data, size_t size) {
         OnMessage<Command>(name, data, size, apply);

@@ -131,6 +131,7 @@ class CommandIntake {
   int64_t drops_since_log_ = 0;
   double refusal_second_ = -INFINITY;  ///< s on the clock: when the current second of refusals began
   int64_t refusals_in_second_ = 0;     ///< refusals in it: answered and logged up to the limit
+  BusSubscriptions subscriptions_{bus_};  ///< last: dropped first, before what the handlers use
 };
 
 }  // namespace flagsim

@@ -25,8 +25,9 @@ ServerPresence::ServerPresence(Bus& bus, const Channels& channels, std::function
       dropped_(std::move(dropped)),
       channel_(channels.status),
       prefix_(channels.prefix),
-      id_(NewServerId()) {
-  bus.Subscribe(channels.status,
+      id_(NewServerId()),
+      subscriptions_(bus) {
+  subscriptions_.Subscribe(channels.status,
                 [this](const std::string&, const uint8_t* data, size_t size) { OnStatus(data, size); });
 }
 

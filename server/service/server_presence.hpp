@@ -44,6 +44,7 @@ class ServerPresence {
   std::string prefix_;
   int64_t id_;
   std::map<int64_t, double> heard_;  ///< another server's id => when its STATUS last came
+  BusSubscriptions subscriptions_;  ///< last: dropped first, before what the handler uses
 };
 
 }  // namespace flagsim
