@@ -53,8 +53,14 @@ void AddSnapshotCommand(CLI::App& app, Invocation& invocation);
 // The camera's moves (flagctl_camera.cpp), the timeline (flagctl_keyframe.cpp).
 void AddCameraCommand(CLI::App& app, Invocation& invocation);
 void AddKeyframeCommand(CLI::App& app, Invocation& invocation);
+// The simulation's clock: pause, resume, step, scale (flagctl_time.cpp).
+void AddTimeCommand(CLI::App& app, Invocation& invocation);
 // A log's frames into pictures (flagctl_export.cpp); the live view (flagctl_serve.cpp).
 void AddExportCommand(CLI::App& app, Invocation& invocation);
+/// flagctl export of the log at `log` to `output` (its kind by its name), as the command runs it:
+/// "" or what went wrong. For the gateway, which makes a video of each recording.
+std::string ExportLogTo(const Globals& globals, const std::string& log, const std::string& output,
+                        const std::atomic<bool>& stop);
 void AddServeCommand(CLI::App& app, Invocation& invocation);
 // A new key file for signed commands (flagctl_keygen.cpp).
 void AddKeygenCommand(CLI::App& app, Invocation& invocation);

@@ -1,5 +1,6 @@
-// flagctl export: a log's frames into PNGs or a video.
+// flagctl export: a log's frames into PNGs or a video, or the whole session into MCAP.
 //
+//   NAME.mcap  the live view's channels, offline (gateway/mcap_export.hpp); otherwise:
 //   survey    FRAME and PARAMS only: is there a keyframe, what size, what frame rate
 //   frames    TILE and FRAME through the assembler (log_frames.hpp): whole images, the
 //             timing kept (lost and missing frames repeat the last whole one)
@@ -16,6 +17,7 @@
 #include "client/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
 #include "client/frame_output.hpp"
+#include "client/gateway/mcap_export.hpp"
 #include "client/log_frames.hpp"
 #include "client/progress_bar.hpp"
 #include "messages/event_log_reader.hpp"
@@ -134,8 +136,45 @@ int CheckRequest(const ExportRequest& request, OutputKind* kind) {
   return kFailed;
 }
 
+bool IsMcap(const std::string& output) {
+  return output.size() > 5 && output.compare(output.size() - 5, 5, ".mcap") == 0;
+}
+
+/// The session in a log, as the live view's channels, into MCAP; `stop` ends it early.
+int ExportToMcap(const Globals& globals, const ExportRequest& request, const std::atomic<bool>& stop) {
+  if (request.frame_rate > 0) {
+    std::fprintf(stderr, "flagctl export: --fps is for videos; MCAP keeps every message at its own time\n");
+    return kUsage;
+  }
+  ProgressBar bar;
+  gateway::McapExportReport report;
+  try {
+    report = gateway::ExportMcap(request.log_path, request.output, Channels(globals.prefix), stop,
+                                 [&bar](double fraction) { bar.Update(fraction, "reading the log"); });
+  } catch (const std::runtime_error& error) {
+    bar.Finish(std::string("flagctl export: ") + error.what());
+    return kFailed;
+  }
+  std::string summary = request.output + ": " + std::to_string(report.total()) + " messages";
+  for (const auto& [topic, count] : report.messages) summary += ", " + std::to_string(count) + " on " + topic;
+  bar.Finish(summary);
+  Note(report.incomplete_frames, "frame(s) with tiles missing: no image for them");
+  Note(report.undecodable, "event(s) on the server's channels that were not their type ignored");
+  if (!report.log_problem.empty())
+    std::fprintf(stderr, "flagctl export: %s; exported everything before it\n", report.log_problem.c_str());
+  if (stop.load()) {
+    std::fprintf(stderr, "flagctl export: interrupted; %s holds the messages so far\n", request.output.c_str());
+    return kFailed;
+  }
+  if (report.total() > 0) return kOk;
+  std::fprintf(stderr, "flagctl export: %s holds nothing on %s*; is the server's channel prefix another (--prefix)?\n",
+               request.log_path.c_str(), globals.prefix.c_str());
+  return kNothingToExport;
+}
+
 /// The frames in a log, assembled and hash-checked, into PNGs or a video; `stop` ends it early.
 int Export(const Globals& globals, const ExportRequest& request, const std::atomic<bool>& stop) {
+  if (IsMcap(request.output)) return ExportToMcap(globals, request, stop);
   OutputKind kind = OutputKind::kPngDirectory;
   const int checked = CheckRequest(request, &kind);
   if (checked != kOk) return checked;
@@ -177,18 +216,27 @@ int Export(const Globals& globals, const ExportRequest& request, const std::atom
 
 }  // namespace
 
+std::string ExportLogTo(const Globals& globals, const std::string& log, const std::string& output,
+                        const std::atomic<bool>& stop) {
+  const int code = Export(globals, ExportRequest{log, output, 0}, stop);
+  if (code == kOk) return "";
+  return "flagctl export of " + log + " to " + output + " ended with exit code " + std::to_string(code) +
+         " (its reason is on the gateway's output)";
+}
+
 void AddExportCommand(CLI::App& app, Invocation& invocation) {
   const auto request = std::make_shared<ExportRequest>();
   ExportRequest& export_request = *request;
   CLI::App* export_command =
-      app.add_subcommand("export", "turn the frames in an LCM log into PNGs, an MP4 or a GIF");
+      app.add_subcommand("export", "turn the frames in an LCM log into PNGs, an MP4 or a GIF, or the session into MCAP");
   export_command
       ->add_option("log", export_request.log_path, "the log (flagctl record, flagd render, lcm-logger)")
       ->required();
   export_command
       ->add_option(
           "-o,--output", export_request.output,
-          "DIR/ or an existing directory: PNG frames frame_%06d.png; NAME.mp4: H.264 video; NAME.gif")
+          "DIR/ or an existing directory: PNG frames frame_%06d.png; NAME.mp4: H.264 video; NAME.gif; "
+          "NAME.mcap: the live view's channels (image, 3D scene, plots, tables) for Foxglove or Lichtblick")
       ->required();
   export_command
       ->add_option(
@@ -205,6 +253,9 @@ void AddExportCommand(CLI::App& app, Invocation& invocation) {
       "it stops. Videos are made by ffmpeg (Debian's ffmpeg package) and keep the first frame's size:\n"
       "a later frame of another size (a camera size command mid-session) is scaled to fit it, keeping\n"
       "its shape, centred on black. PNG frames keep each its own size.\n"
+      "NAME.mcap holds the channels and schemas the live view's gateway serves (/flag/image as JPEG,\n"
+      "/flag/scene, /flag/state, /flag/status, /flag/params, /flag/timeline, /flag/camera, /flag/acks),\n"
+      "each message at its log time: open it in Foxglove or Lichtblick.\n"
       "Exit codes: 0 ok (also for a log cut short), 1 the log cannot be read, the output cannot be\n"
       "written, or ffmpeg is missing or failed, 2 usage, 5 no complete frame in the log.");
 

@@ -1,4 +1,4 @@
-// flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, keyframe, refresh),
+// flagctl: the thin client. Steers a flagd server (wind, set, reset, camera, keyframe, time, refresh),
 // reads its streams (params, status, watch, snapshot, keyframe list), records sessions (record),
 // turns logs into pictures (export) and serves the live view to browsers (serve). This file is the
 // command line: the global options, one registration per subcommand (flagctl_commands.hpp), whose
@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   for (const auto add :
        {AddWindCommand, AddSetCommand, AddResetCommand, AddParamsCommand, AddStatusCommand, AddRefreshCommand,
         AddWatchCommand, AddRecordCommand, AddExportCommand, AddSnapshotCommand, AddCameraCommand,
-        AddKeyframeCommand, AddServeCommand, AddKeygenCommand}) {
+        AddKeyframeCommand, AddTimeCommand, AddServeCommand, AddKeygenCommand}) {
     add(app, invocation);
   }
   std::signal(SIGINT, OnSignal);

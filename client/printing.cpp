@@ -83,6 +83,16 @@ void PrintModel(const status_t& status, std::ostream& out) {
   if (!status.model_note.empty()) out << "auto:              " << TerminalText(status.model_note) << "\n";
 }
 
+/// "clock:  paused, 12 steps owed; time_scale 0.5".
+void PrintClock(const status_t& status, std::ostream& out) {
+  char text[160];
+  const char* running = status.paused ? (status.steps_owed > 0 ? "paused, stepping" : "paused") : "running";
+  std::snprintf(text, sizeof(text), "clock:             %s%s; time_scale %g (simulated s per wall s)\n", running,
+                status.steps_owed > 0 ? (", " + std::to_string(status.steps_owed) + " steps owed").c_str() : "",
+                status.time_scale);
+  out << text;
+}
+
 }  // namespace
 
 void PrintStatus(const status_t& status, std::ostream& out) {
@@ -109,6 +119,7 @@ void PrintStatus(const status_t& status, std::ostream& out) {
                 static_cast<long long>(status.commands_rejected),
                 static_cast<long long>(status.messages_dropped), static_cast<long long>(status.recoveries));
   out << text;
+  PrintClock(status, out);
   PrintModel(status, out);
   if (!status.last_recovery.empty())
     out << "last recovery:     " << TerminalText(status.last_recovery) << "\n";

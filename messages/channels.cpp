@@ -11,6 +11,7 @@ Channels::Channels(const std::string& prefix_in)
       camera(prefix + "CAMERA"),
       keyframe(prefix + "KEYFRAME"),
       refresh(prefix + "REFRESH"),
+      time(prefix + "TIME"),
       ack(prefix + "ACK"),
       state(prefix + "STATE"),
       tile(prefix + "TILE"),

@@ -26,6 +26,7 @@ struct Channels {
   std::string camera;    ///< camera_command_t
   std::string keyframe;  ///< keyframe_command_t
   std::string refresh;   ///< refresh_request_t
+  std::string time;      ///< time_command_t
   // server -> clients
   std::string ack;       ///< ack_t
   std::string state;     ///< state_t

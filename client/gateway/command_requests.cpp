@@ -235,4 +235,21 @@ std::string KeyframeCommandOf(const json& request, keyframe_command_t* command) 
   return "";
 }
 
+std::string TimeCommandOf(const json& request, time_command_t* command) {
+  std::string name;
+  std::string problem = First(RequireObject(request), Operation(request, &name));
+  if (!problem.empty()) return problem;
+  if (name == "pause") {
+    command->operation = time_command_t::PAUSE;
+  } else if (name == "resume") {
+    command->operation = time_command_t::RESUME;
+  } else if (name == "step") {
+    command->operation = time_command_t::STEP;
+  } else {
+    return "operation: '" + name + "' is not one; allowed pause, resume, step";
+  }
+  command->steps = 1;
+  return ReadInteger(request, "steps", &command->steps);
+}
+
 }  // namespace flagsim::gateway

@@ -11,6 +11,7 @@
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
 #include "flagsim/param_command_t.hpp"
+#include "flagsim/time_command_t.hpp"
 #include "flagsim/wind_command_t.hpp"
 
 namespace flagsim::gateway {
@@ -20,6 +21,7 @@ std::string WindCommandOf(const nlohmann::json& request, wind_command_t* command
 std::string SetCommandOf(const nlohmann::json& request, param_command_t* command);
 std::string CameraCommandOf(const nlohmann::json& request, camera_command_t* command);
 std::string KeyframeCommandOf(const nlohmann::json& request, keyframe_command_t* command);
+std::string TimeCommandOf(const nlohmann::json& request, time_command_t* command);
 
 /// A parameter value from JSON as PARAM's text ("1500", "true", "rk4"); "" with *error set
 /// for what cannot be one (null, arrays, objects).

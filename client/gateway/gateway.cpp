@@ -1,11 +1,13 @@
 #include "client/gateway/gateway.hpp"
 
 #include <cstdio>
+#include <stdexcept>
 
 #include "client/gateway/bus_json.hpp"
 #include "client/gateway/command_requests.hpp"
 #include "client/gateway/compressed_image.hpp"
 #include "client/gateway/foxglove_wire.hpp"
+#include "client/gateway/mcap_export.hpp"
 #include "client/gateway/process_usage.hpp"
 #include "client/gateway/scene_update.hpp"
 #include "client/stream_reader.hpp"
@@ -17,6 +19,22 @@ namespace {
 using nlohmann::json;
 
 uint64_t Nanoseconds(int64_t utime) { return utime > 0 ? uint64_t(utime) * 1000 : 0; }
+
+/// What a finished recording becomes: MCAP, made here, and a video where an exporter is given.
+std::vector<RecordingExports::Format> ExportFormats(const Channels& channels,
+                                                    const RecordingExports::Exporter& video) {
+  std::vector<RecordingExports::Format> formats = {
+      {"mcap", [channels](const std::string& log, const std::string& output, const std::atomic<bool>& stop) {
+         try {
+           ExportMcap(log, output, channels, stop);
+         } catch (const std::runtime_error& error) {
+           return std::string(error.what());
+         }
+         return std::string(stop.load() ? "stopped" : "");
+       }}};
+  if (video) formats.push_back({"mp4", video});
+  return formats;
+}
 
 json CommandResultJson(const CommandOutcome& outcome, const std::string& channel, int64_t sequence) {
   const bool answered = outcome.result != CommandOutcome::kNoAnswer;
@@ -52,7 +70,7 @@ Gateway::Gateway(Bus& bus, const Channels& channels, GatewayOptions options)
       channels_(channels),
       options_(std::move(options)),
       relay_(bus, NewGatewayClientId(), options_.command_timeout, options_.signer),
-      recorder_(bus, channels, options_.record_directory) {
+      recorder_(bus, channels, options_.record_directory, ExportFormats(channels, options_.video_exporter)) {
   feeds_[kAcksChannel] = ChannelFeed(kAcksKept);
   started_ = status_window_start_ = next_status_ = options_.clock();
   SubscribeBus();
@@ -249,6 +267,12 @@ void Gateway::ServiceRequest(int client, uint32_t service, const json& request,
       keyframe_command_t command{};
       problem = KeyframeCommandOf(request, &command);
       if (problem.empty()) Relay(client, channels_.keyframe, command, reply);
+      break;
+    }
+    case kTimeService: {
+      time_command_t command{};
+      problem = TimeCommandOf(request, &command);
+      if (problem.empty()) Relay(client, channels_.time, command, reply);
       break;
     }
     case kRefreshService:

@@ -38,6 +38,8 @@ struct GatewayOptions {
   std::string record_directory = "recordings";
   std::function<double()> clock = MonotonicSeconds;  ///< s, monotonic; tests drive their own
   CommandSigner signer;  ///< signs the commands it relays, for a server with keys (flagctl --key-file)
+  /// Makes a video of a finished recording (flagctl export's MP4), if given; MCAP is made always.
+  RecordingExports::Exporter video_exporter;
 };
 
 /// A connected client as the gateway sees it; the transport implements it.

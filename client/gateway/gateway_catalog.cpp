@@ -44,6 +44,7 @@ const std::vector<ServiceInfo>& AdvertisedServices() {
       {kKeyframeService, "/flag/keyframe", "flagsim.Keyframe", "keyframe_request", "command_result"},
       {kRefreshService, "/flag/refresh", "flagsim.Refresh", "refresh_request", "command_result"},
       {kRecordService, "/flag/record", "flagsim.Record", "record_request", "record_result"},
+      {kTimeService, "/flag/time", "flagsim.Time", "time_request", "command_result"},
   };
   return services;
 }

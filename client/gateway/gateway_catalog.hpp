@@ -32,6 +32,7 @@ enum ServiceId : uint32_t {
   kKeyframeService,
   kRefreshService,
   kRecordService,
+  kTimeService,
 };
 
 struct ChannelInfo {

@@ -18,29 +18,54 @@ constexpr const char* kContentSecurityPolicy =
 
 }  // namespace
 
-HttpSession::HttpSession(boost::asio::ip::tcp::socket socket, ServerContext& context)
-    : stream_(std::move(socket)), context_(context) {
+template <class Stream>
+HttpSession<Stream>::HttpSession(Stream stream, ServerContext& context, beast::flat_buffer buffer)
+    : stream_(std::move(stream)), context_(context), buffer_(std::move(buffer)) {
   beast::error_code error;
-  const auto endpoint = stream_.socket().remote_endpoint(error);
+  const auto endpoint = beast::get_lowest_layer(stream_).socket().remote_endpoint(error);
   if (!error) address_ = endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
 }
 
-void HttpSession::Read() {
+// TLS: the handshake (from the bytes already read), then requests; plain: requests at once.
+template <class Stream>
+void HttpSession<Stream>::Start() {
+  if constexpr (kIsTls<Stream>) {
+    beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(int(ServerContext::kHandshakeTimeout)));
+    stream_.async_handshake(boost::asio::ssl::stream_base::server, buffer_.data(),
+                            beast::bind_front_handler(&HttpSession::OnHandshake, this->shared_from_this()));
+  } else {
+    Read();
+  }
+}
+
+template <class Stream>
+void HttpSession<Stream>::OnHandshake(beast::error_code error, size_t bytes_used) {
+  if (error) return Close(boost::asio::ip::tcp::socket::shutdown_both);  // not TLS after all, or refused
+  buffer_.consume(bytes_used);
+  Read();
+}
+
+template <class Stream>
+void HttpSession<Stream>::Close(boost::asio::ip::tcp::socket::shutdown_type how) {
+  beast::error_code ignored;
+  beast::get_lowest_layer(stream_).socket().shutdown(how, ignored);
+}
+
+template <class Stream>
+void HttpSession<Stream>::Read() {
   parser_.emplace();
   parser_->header_limit(ServerContext::kMaxHeaderBytes);
   parser_->body_limit(ServerContext::kMaxHeaderBytes);
-  stream_.expires_after(std::chrono::seconds(static_cast<int>(ServerContext::kHttpTimeout)));
+  beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(static_cast<int>(ServerContext::kHttpTimeout)));
   http::async_read(stream_, buffer_, *parser_,
-                   beast::bind_front_handler(&HttpSession::OnRead, shared_from_this()));
+                   beast::bind_front_handler(&HttpSession::OnRead, this->shared_from_this()));
 }
 
 // request => its route (http_routing.hpp) => upgrade, the page, a recording, or a refusal
-void HttpSession::OnRead(beast::error_code error, size_t) {
-  if (error) {  // closed, timed out, or not HTTP within the limits: nothing to answer
-    beast::error_code ignored;
-    stream_.socket().shutdown(boost::asio::ip::tcp::socket::shutdown_both, ignored);
-    return;
-  }
+template <class Stream>
+void HttpSession<Stream>::OnRead(beast::error_code error, size_t) {
+  // closed, timed out, or not HTTP within the limits: nothing to answer
+  if (error) return Close(boost::asio::ip::tcp::socket::shutdown_both);
   Request request = parser_->release();
   const HttpRoute route = RouteRequest(request, context_);
   switch (route.kind) {
@@ -58,11 +83,13 @@ void HttpSession::OnRead(beast::error_code error, size_t) {
   Refuse(request, route.status, route.reason);
 }
 
-void HttpSession::Upgrade(Request request) {
-  std::make_shared<WebSocketSession>(std::move(stream_), context_, address_)->Accept(std::move(request));
+template <class Stream>
+void HttpSession<Stream>::Upgrade(Request request) {
+  std::make_shared<WebSocketSession<Stream>>(std::move(stream_), context_, address_)->Accept(std::move(request));
 }
 
-void HttpSession::Serve(const Request& request, const WebAsset& asset, bool set_cookie) {
+template <class Stream>
+void HttpSession<Stream>::Serve(const Request& request, const WebAsset& asset, bool set_cookie) {
   http::response<http::string_body> response{http::status::ok, request.version()};
   response.set(http::field::content_type, std::string(asset.content_type));
   response.set(http::field::cache_control, "no-cache");
@@ -70,7 +97,8 @@ void HttpSession::Serve(const Request& request, const WebAsset& asset, bool set_
   response.set("X-Content-Type-Options", "nosniff");
   if (set_cookie) {
     response.set(http::field::set_cookie,
-                 "flagsim_token=" + context_.access.token + "; HttpOnly; SameSite=Strict; Path=/");
+                 "flagsim_token=" + context_.access.token + "; HttpOnly; SameSite=Strict; Path=/" +
+                     (kIsTls<Stream> ? "; Secure" : ""));
   }
   if (request.method() == http::verb::get) response.body() = std::string(asset.body);
   response.content_length(asset.body.size());
@@ -78,7 +106,8 @@ void HttpSession::Serve(const Request& request, const WebAsset& asset, bool set_
   Send(std::move(response));
 }
 
-void HttpSession::ServeRecording(const Request& request, const HttpRoute& route) {
+template <class Stream>
+void HttpSession<Stream>::ServeRecording(const Request& request, const HttpRoute& route) {
   http::file_body::value_type file;
   beast::error_code error;
   file.open(route.recording_path.c_str(), beast::file_mode::scan, error);
@@ -94,7 +123,8 @@ void HttpSession::ServeRecording(const Request& request, const HttpRoute& route)
   Send(std::move(response));
 }
 
-void HttpSession::Refuse(const Request& request, http::status status, const std::string& reason) {
+template <class Stream>
+void HttpSession<Stream>::Refuse(const Request& request, http::status status, const std::string& reason) {
   http::response<http::string_body> response{status, request.version()};
   if (status == http::status::unauthorized) response.set(http::field::www_authenticate, "Bearer");
   const auto accept = request.find(http::field::accept);
@@ -110,24 +140,25 @@ void HttpSession::Refuse(const Request& request, http::status status, const std:
   Send(std::move(response));
 }
 
+template <class Stream>
 template <class Body>
-void HttpSession::Send(http::response<Body> response) {
+void HttpSession<Stream>::Send(http::response<Body> response) {
   auto owned = std::make_shared<http::response<Body>>(std::move(response));
   response_ = owned;
   const bool close = owned->need_eof();
-  stream_.expires_after(std::chrono::seconds(static_cast<int>(ServerContext::kHttpTimeout)));
+  beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(static_cast<int>(ServerContext::kHttpTimeout)));
   http::async_write(stream_, *owned,
-                    beast::bind_front_handler(&HttpSession::OnWrite, shared_from_this(), close));
+                    beast::bind_front_handler(&HttpSession::OnWrite, this->shared_from_this(), close));
 }
 
-void HttpSession::OnWrite(bool close, beast::error_code error, size_t) {
+template <class Stream>
+void HttpSession<Stream>::OnWrite(bool close, beast::error_code error, size_t) {
   response_.reset();
-  if (error || close) {
-    beast::error_code ignored;
-    stream_.socket().shutdown(boost::asio::ip::tcp::socket::shutdown_send, ignored);
-    return;
-  }
+  if (error || close) return Close(boost::asio::ip::tcp::socket::shutdown_send);
   Read();
 }
+
+template class HttpSession<PlainStream>;
+template class HttpSession<TlsStream>;
 
 }  // namespace flagsim::gateway

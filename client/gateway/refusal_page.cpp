@@ -26,7 +26,9 @@ std::string Hint(int status) {
            "token is then kept in a cookie for this page). Started with <code>scripts/live.sh</code>, "
            "it is in that script's output; a token given to it (<code>--token</code> or "
            "<code>$FLAGSIM_TOKEN</code>) is the one to add. Ask whoever runs the server if you have "
-           "neither.</p>";
+           "neither.</p>"
+           "<form method=\"get\" action=\"/\"><label>Token <input name=\"token\" autocomplete=\"off\" "
+           "spellcheck=\"false\" size=\"34\" required autofocus></label> <button>Open the live view</button></form>";
   }
   if (status == 403) {
     return "<p>This gateway serves only its own machine (loopback) unless it was started with a "
@@ -46,7 +48,7 @@ std::string RefusalHtml(int status, const std::string& reason) {
          "content=\"width=device-width, initial-scale=1\"><title>flagsim live view: " + title +
          "</title><style>body{font:15px/1.5 system-ui,sans-serif;max-width:40em;margin:3em auto;padding:0 1em;"
          "color:#ddd;background:#15181d}code{background:#262b33;padding:0 .3em;border-radius:3px}"
-         "h1{font-size:1.3em}</style></head><body><h1>flagsim live view: " + title + "</h1><p>" +
+         "h1{font-size:1.3em}input,button{font:inherit;padding:.2em .5em}</style></head><body><h1>flagsim live view: " + title + "</h1><p>" +
          std::to_string(status) + ": " + Escaped(reason) + "</p>" + Hint(status) + "</body></html>\n";
 }
 

@@ -17,6 +17,8 @@
 #include "client/gateway/gateway.hpp"
 #include "client/gateway/http_session.hpp"
 #include "client/gateway/server_context.hpp"
+#include "client/gateway/tls_certificate.hpp"
+#include "client/gateway/tls_detector.hpp"
 
 namespace flagsim::gateway {
 namespace {
@@ -102,7 +104,8 @@ class EventLoop {
  private:
   void Accept() {
     acceptor_.async_accept([this](boost::system::error_code error, tcp::socket socket) {
-      if (!error) std::make_shared<HttpSession>(std::move(socket), context_)->Start();
+      if (!error && context_.tls) std::make_shared<TlsDetector>(std::move(socket), context_)->Start();
+      if (!error && !context_.tls) std::make_shared<HttpSession<PlainStream>>(PlainStream(std::move(socket)), context_)->Start();
       Accept();
     });
   }
@@ -132,6 +135,21 @@ class EventLoop {
   net::signal_set signals_;
 };
 
+/// The TLS the gateway serves with, if any: the user's pair; beyond loopback a self-signed one
+/// for the addresses it serves (and this machine's name), unless plain HTTP was asked for.
+/// Throws std::runtime_error (a file that cannot be read or written) or std::invalid_argument
+/// (half a pair given).
+std::optional<TlsSetup> TlsFor(const ServeOptions& options, const tcp::endpoint& endpoint) {
+  if (options.tls_certificate.empty() != options.tls_key.empty())
+    throw std::invalid_argument("give --tls-cert and --tls-key together");
+  if (!options.tls_certificate.empty()) return LoadTls(options.tls_certificate, options.tls_key);
+  if (endpoint.address().is_loopback() || options.plain_http) return std::nullopt;
+  std::vector<std::string> hosts = UrlHosts(endpoint);
+  char name[256] = "";
+  if (gethostname(name, sizeof(name) - 1) == 0 && name[0] != '\0') hosts.push_back(name);
+  return SelfSignedTls(options.tls_directory, hosts);
+}
+
 }  // namespace
 
 int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
@@ -142,16 +160,28 @@ int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
     std::fprintf(stderr, "flagctl serve: %s\n", error.what());
     return 2;
   }
+  std::optional<TlsSetup> tls;
+  try {
+    tls = TlsFor(options, endpoint);
+  } catch (const std::invalid_argument& error) {
+    std::fprintf(stderr, "flagctl serve: %s\n", error.what());
+    return 2;
+  } catch (const std::runtime_error& error) {
+    std::fprintf(stderr, "flagctl serve: %s\n", error.what());
+    return 1;
+  }
   GatewayOptions gateway_options;
   gateway_options.command_timeout = options.command_timeout;
   gateway_options.signer = options.signer;
   gateway_options.record_directory = options.record_directory;
+  gateway_options.video_exporter = options.video_exporter;
   gateway_options.name = "flagsim (" + channels.prefix + " on " + bus.url() + ")";
   Gateway gateway(bus, channels, gateway_options);
   ServerContext context{gateway,
                         {options.token, endpoint.address().is_loopback(), options.allow_origins},
                         std::to_string(UnixMicros())};
   if (context.access.token.empty() && !context.access.loopback) context.access.token = NewToken();
+  if (tls) context.tls = tls->context.get();
 
   net::io_context io(1);
   std::unique_ptr<EventLoop> loop;
@@ -162,11 +192,20 @@ int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
     return 1;
   }
   const std::string query = context.access.token.empty() ? "" : "?token=" + context.access.token;
+  const std::string secure = tls ? "s" : "";
   for (const std::string& name : UrlHosts(endpoint)) {
     const std::string host = name + ":" + std::to_string(loop->local_endpoint().port());
-    std::printf("flagctl serve: live view   http://%s/%s\n", host.c_str(), query.c_str());
-    std::printf("flagctl serve: Foxglove    ws://%s/%s  (Foxglove WebSocket connection)\n", host.c_str(),
-                query.c_str());
+    if (context.https_hint.empty()) context.https_hint = "https://" + host + "/";
+    std::printf("flagctl serve: live view   http%s://%s/%s\n", secure.c_str(), host.c_str(), query.c_str());
+    std::printf("flagctl serve: Foxglove    ws%s://%s/%s  (Foxglove WebSocket connection)\n", secure.c_str(),
+                host.c_str(), query.c_str());
+  }
+  if (tls) {
+    std::printf("flagctl serve: TLS %s certificate %s, SHA-256 fingerprint %s%s\n",
+                tls->self_signed ? "self-signed" : "", tls->certificate_path.c_str(), tls->fingerprint.c_str(),
+                tls->self_signed ? " (check it against the browser's before trusting it)" : "");
+  } else if (!endpoint.address().is_loopback()) {
+    std::printf("flagctl serve: warning: plain HTTP beyond loopback: the token crosses the network in clear\n");
   }
   std::printf("flagctl serve: bus %s, prefix %s; recordings go to %s/\n", bus.url().c_str(),
               channels.prefix.c_str(), options.record_directory.c_str());

@@ -1,6 +1,7 @@
 // `flagctl serve`: the gateway's event loop. One thread runs everything: the HTTP and
-// WebSocket connections (Boost.Asio), the bus (its file descriptor watched by the same loop),
-// the gateway's ticks (command resends, its status), and SIGINT/SIGTERM, which end it.
+// WebSocket connections (Boost.Asio; over TLS beyond loopback), the bus (its file descriptor
+// watched by the same loop), the gateway's ticks (command resends, its status), and
+// SIGINT/SIGTERM, which end it.
 #pragma once
 
 #include <boost/asio/ip/tcp.hpp>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "client/gateway/recording_exports.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
 #include "messages/command_mac.hpp"
@@ -21,6 +23,12 @@ struct ServeOptions {
   std::string record_directory = "recordings";
   double command_timeout = 2.0;  ///< s to wait for a command's ACK
   CommandSigner signer;          ///< signs the commands it relays (flagctl --key-file)
+  RecordingExports::Exporter video_exporter;  ///< makes each recording's MP4 (flagctl export)
+  /// TLS (HTTPS, WSS): with this certificate and key (PEM), on any address; else beyond loopback a
+  /// self-signed pair kept in tls_directory, unless plain_http.
+  std::string tls_certificate, tls_key;
+  std::string tls_directory = "flagsim-tls";
+  bool plain_http = false;  ///< beyond loopback without TLS (behind a proxy that adds it)
 };
 
 /// "HOST:PORT" => the address to listen on: HOST an IP address (a v6 one in brackets too) or

@@ -2,6 +2,7 @@
 // limits. One event loop runs them all.
 #pragma once
 
+#include <boost/asio/ssl/context.hpp>
 #include <string>
 
 #include "client/gateway/access_policy.hpp"
@@ -21,6 +22,8 @@ struct ServerContext {
   AccessPolicy access;
   std::string session_id;  ///< serverInfo's: this gateway's run
   int websocket_clients = 0;
+  boost::asio::ssl::context* tls = nullptr;  ///< serving HTTPS and WSS when set (tls_certificate.hpp)
+  std::string https_hint;                    ///< the https:// address a plain-HTTP request is told to open
 };
 
 }  // namespace flagsim::gateway

@@ -24,13 +24,16 @@ bool PlainName(std::string_view name) {
   for (char c : name) {
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) return false;
   }
-  return name.size() > 7 && name.substr(name.size() - 7) == ".lcmlog";
+  return true;
 }
+
+bool IsLog(std::string_view name) { return name.size() > 7 && name.substr(name.size() - 7) == ".lcmlog"; }
 
 }  // namespace
 
-SessionRecorder::SessionRecorder(Bus& bus, const Channels& channels, std::string directory)
-    : bus_(bus), channels_(channels), directory_(std::move(directory)) {}
+SessionRecorder::SessionRecorder(Bus& bus, const Channels& channels, std::string directory,
+                                 std::vector<RecordingExports::Format> formats)
+    : bus_(bus), channels_(channels), directory_(std::move(directory)), exports_(std::move(formats)) {}
 
 SessionRecorder::~SessionRecorder() = default;
 
@@ -62,6 +65,7 @@ nlohmann::json SessionRecorder::Stop(double now) {
   if (recorder_->failed()) last_error_ = recorder_->error();  // the disk is full: whole up to there
   recorder_.reset();  // closes the log
   stopped_ = now;
+  exports_.Begin(directory_ + "/" + name_);
   return State(now);
 }
 
@@ -82,12 +86,14 @@ nlohmann::json SessionRecorder::State(double now, const std::string& error) cons
                           {"events", running ? recorder_->events() : last_events_},
                           {"bytes", running ? recorder_->bytes() : last_bytes_},
                           {"seconds", name_.empty() ? 0.0 : (running ? now : stopped_) - started_},
-                          {"error", error.empty() ? last_error_ : error}};
+                          {"error", error.empty() ? last_error_ : error},
+                          {"exports", running || name_.empty() ? nlohmann::json::object() : exports_.State(name_)}};
   return state;
 }
 
 std::optional<std::string> SessionRecorder::FinishedFile(std::string_view name) const {
   if (!PlainName(name) || (recorder_ && name == name_)) return std::nullopt;
+  if (!IsLog(name) && !exports_.Ready(std::string(name))) return std::nullopt;
   const std::string path = directory_ + "/" + std::string(name);
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) return std::nullopt;

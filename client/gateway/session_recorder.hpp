@@ -1,6 +1,7 @@
 // The gateway's recorder (service /flag/record): every channel of the server into an LCM log,
 // as `flagctl record` makes one, started and stopped by any client; once stopped, the log is
-// served for download at /recordings/NAME. One recording at a time, bounded in size.
+// served for download at /recordings/NAME, and so are the files made from it (MCAP, a video:
+// recording_exports.hpp) once each is whole. One recording at a time, bounded in size.
 #pragma once
 
 #include <memory>
@@ -8,7 +9,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "client/gateway/recording_exports.hpp"
 #include "client/log_recorder.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
@@ -20,8 +23,9 @@ class SessionRecorder {
   static constexpr uint64_t kMaxBytes = uint64_t(4) << 30;  ///< a recording stops at this size
 
   /// Records every channel of `channels`; logs go into `directory` (made when the first
-  /// recording starts).
-  SessionRecorder(Bus& bus, const Channels& channels, std::string directory);
+  /// recording starts), and each finished one is exported in `formats`.
+  SessionRecorder(Bus& bus, const Channels& channels, std::string directory,
+                  std::vector<RecordingExports::Format> formats = {});
   ~SessionRecorder();
 
   /// Each answers with the recording's state (schemas/record_result.json).
@@ -38,7 +42,8 @@ class SessionRecorder {
   bool recording() const { return recorder_ != nullptr; }
   /// Whether the recording needs a keyframe request now (LogRecorder::KeyframeRequestDue).
   bool KeyframeRequestDue(double now) { return recorder_ && recorder_->KeyframeRequestDue(now); }
-  /// The path of a finished recording named `name` (no directories in it); nullopt if none.
+  /// The path of a finished recording, or a finished export of one, named `name` (no
+  /// directories in it); nullopt if none.
   std::optional<std::string> FinishedFile(std::string_view name) const;
 
  private:
@@ -54,6 +59,7 @@ class SessionRecorder {
   int64_t last_events_ = 0;
   uint64_t last_bytes_ = 0;
   std::string last_error_;
+  RecordingExports exports_;
 };
 
 }  // namespace flagsim::gateway

@@ -19,7 +19,8 @@ std::chrono::milliseconds Milliseconds(double seconds) {
 
 }  // namespace
 
-WebSocketSession::WebSocketSession(beast::tcp_stream stream, ServerContext& context, std::string address)
+template <class Stream>
+WebSocketSession<Stream>::WebSocketSession(Stream stream, ServerContext& context, std::string address)
     : socket_(std::move(stream)),
       context_(context),
       address_(std::move(address)),
@@ -27,9 +28,11 @@ WebSocketSession::WebSocketSession(beast::tcp_stream stream, ServerContext& cont
   ++context_.websocket_clients;
 }
 
-WebSocketSession::~WebSocketSession() { --context_.websocket_clients; }
+template <class Stream>
+WebSocketSession<Stream>::~WebSocketSession() { --context_.websocket_clients; }
 
-void WebSocketSession::Accept(http::request<http::string_body> request) {
+template <class Stream>
+void WebSocketSession<Stream>::Accept(http::request<http::string_body> request) {
   beast::get_lowest_layer(socket_).expires_never();  // the WebSocket's own timeouts from here on
   websocket::stream_base::timeout timeouts{};
   timeouts.handshake_timeout = Milliseconds(ServerContext::kHandshakeTimeout);
@@ -42,10 +45,11 @@ void WebSocketSession::Accept(http::request<http::string_body> request) {
   }));
   socket_.read_message_max(ServerContext::kMaxClientMessageBytes);
   socket_.auto_fragment(false);
-  socket_.async_accept(request, beast::bind_front_handler(&WebSocketSession::OnAccept, shared_from_this()));
+  socket_.async_accept(request, beast::bind_front_handler(&WebSocketSession<Stream>::OnAccept, this->shared_from_this()));
 }
 
-void WebSocketSession::OnAccept(beast::error_code error) {
+template <class Stream>
+void WebSocketSession<Stream>::OnAccept(beast::error_code error) {
   if (error) return;
   open_ = true;
   id_ = context_.gateway.Attach(this);
@@ -55,12 +59,14 @@ void WebSocketSession::OnAccept(beast::error_code error) {
   Write();
 }
 
-void WebSocketSession::Read() {
-  socket_.async_read(read_buffer_, beast::bind_front_handler(&WebSocketSession::OnRead, shared_from_this()));
+template <class Stream>
+void WebSocketSession<Stream>::Read() {
+  socket_.async_read(read_buffer_, beast::bind_front_handler(&WebSocketSession<Stream>::OnRead, this->shared_from_this()));
 }
 
 // A message too large (read_message_max), a broken frame or a closed socket ends the session.
-void WebSocketSession::OnRead(beast::error_code error, size_t) {
+template <class Stream>
+void WebSocketSession<Stream>::OnRead(beast::error_code error, size_t) {
   if (error) return Drop(nullptr);
   const std::string message = beast::buffers_to_string(read_buffer_.data());
   read_buffer_.consume(read_buffer_.size());
@@ -74,7 +80,8 @@ void WebSocketSession::OnRead(beast::error_code error, size_t) {
   Read();
 }
 
-void WebSocketSession::Write() {
+template <class Stream>
+void WebSocketSession<Stream>::Write() {
   if (!open_ || write_in_flight_) return;
   if (protocol_->overflowed()) return Drop("its queue overflowed");
   std::optional<Outgoing> next = protocol_->Next();
@@ -86,13 +93,14 @@ void WebSocketSession::Write() {
       boost::asio::buffer(writing_.head),
       writing_.body ? boost::asio::buffer(*writing_.body) : boost::asio::const_buffer()};
   write_deadline_.expires_after(Milliseconds(ServerContext::kWriteTimeout));
-  write_deadline_.async_wait([weak = weak_from_this()](beast::error_code error) {
+  write_deadline_.async_wait([weak = this->weak_from_this()](beast::error_code error) {
     if (auto self = weak.lock(); self && !error) self->Drop("it stopped reading");
   });
-  socket_.async_write(buffers, beast::bind_front_handler(&WebSocketSession::OnWrite, shared_from_this()));
+  socket_.async_write(buffers, beast::bind_front_handler(&WebSocketSession<Stream>::OnWrite, this->shared_from_this()));
 }
 
-void WebSocketSession::OnWrite(beast::error_code error, size_t) {
+template <class Stream>
+void WebSocketSession<Stream>::OnWrite(beast::error_code error, size_t) {
   write_in_flight_ = false;
   write_deadline_.cancel();
   writing_ = Outgoing{};
@@ -101,7 +109,8 @@ void WebSocketSession::OnWrite(beast::error_code error, size_t) {
 }
 
 // Closing the socket ends the pending read and write with errors, which release the session.
-void WebSocketSession::Drop(const char* why) {
+template <class Stream>
+void WebSocketSession<Stream>::Drop(const char* why) {
   if (!open_) return;
   open_ = false;
   context_.gateway.Detach(id_);
@@ -114,5 +123,8 @@ void WebSocketSession::Drop(const char* why) {
   beast::get_lowest_layer(socket_).close();
   write_deadline_.cancel();
 }
+
+template class WebSocketSession<PlainStream>;
+template class WebSocketSession<TlsStream>;
 
 }  // namespace flagsim::gateway

@@ -1,4 +1,5 @@
-// One WebSocket client of the gateway (Boost.Beast), speaking foxglove.websocket.v1.
+// One WebSocket client of the gateway (Boost.Beast), speaking foxglove.websocket.v1, over plain
+// TCP or TLS (gateway_streams.hpp).
 //
 //   read loop    each message => ClientProtocol (text: JSON ops; binary: calls, publishes)
 //   write loop   one write in flight (Beast allows one): when it completes, the protocol says
@@ -16,13 +17,15 @@
 #include <string>
 
 #include "client/gateway/client_protocol.hpp"
+#include "client/gateway/gateway_streams.hpp"
 #include "client/gateway/server_context.hpp"
 
 namespace flagsim::gateway {
 
-class WebSocketSession : public std::enable_shared_from_this<WebSocketSession>, public GatewayClient {
+template <class Stream>
+class WebSocketSession : public std::enable_shared_from_this<WebSocketSession<Stream>>, public GatewayClient {
  public:
-  WebSocketSession(boost::beast::tcp_stream stream, ServerContext& context, std::string address);
+  WebSocketSession(Stream stream, ServerContext& context, std::string address);
   ~WebSocketSession() override;
 
   /// Completes the handshake the HTTP request began, then serves the client.
@@ -40,7 +43,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession>, 
   void OnWrite(boost::beast::error_code error, size_t bytes);
   void Drop(const char* why);
 
-  boost::beast::websocket::stream<boost::beast::tcp_stream> socket_;
+  boost::beast::websocket::stream<Stream> socket_;
   ServerContext& context_;
   std::string address_;
   boost::beast::flat_buffer read_buffer_;

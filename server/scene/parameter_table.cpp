@@ -233,6 +233,9 @@ ParameterTable::ParameterTable() {
       Make("frame_rate", "Hz", ParameterKind::kReal, 0, 120,
            "frames drawn and streamed per second of simulated time; 0: none", &Scene::service,
            &ServiceSettings::frame_rate),
+      Make("time_scale", "", ParameterKind::kReal, 0.1, 4,
+           "simulated seconds per wall-clock second (1: real time); frames still come at frame_rate "
+           "on the wall clock; a reset leaves it", &Scene::service, &ServiceSettings::time_scale),
       Make("shading", "", ParameterKind::kChoice, 0, double(render::ShadingModeNames().size() - 1),
            "how frames are shaded", &Scene::service, &ServiceSettings::shading),
   };

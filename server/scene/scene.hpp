@@ -16,6 +16,9 @@ namespace flagsim {
 struct ServiceSettings {
   double state_rate = 60.0;  ///< Hz, STATE messages per second of simulated time
   double frame_rate = 30.0;  ///< Hz, frames per second of simulated time; 0: no frames
+  /// Simulated seconds per wall-clock second the live server runs at (frames then follow the
+  /// wall clock at frame_rate). Not physics: a reset leaves it alone, and a render ignores it.
+  double time_scale = 1.0;
   render::ShadingMode shading = render::ShadingMode::kGouraud;
 };
 

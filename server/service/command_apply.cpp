@@ -175,6 +175,24 @@ model_t ModelMessageOf(const model::ModelDecision& decision, int64_t utime) {
   return message;
 }
 
+std::string TimeControlOf(const time_command_t& command, TimeControl* control) {
+  switch (command.operation) {
+    case time_command_t::PAUSE:
+      control->operation = TimeControl::kPause;
+      return "";
+    case time_command_t::RESUME:
+      control->operation = TimeControl::kResume;
+      return "";
+    case time_command_t::STEP:
+      control->operation = TimeControl::kStep;
+      control->steps = command.steps;
+      return "";
+    default:
+      return "operation: " + std::to_string(int(command.operation)) + " is not an operation; allowed 1 (PAUSE), " +
+             "2 (RESUME), 3 (STEP)";
+  }
+}
+
 std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint8_t>& data,
                               Session* session) {
   if (channel == "WIND") {
@@ -195,6 +213,13 @@ std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint
       return problem.empty() ? session->ApplyTimeline(edit) : problem;
     });
   }
+  if (channel == "TIME") {
+    return DecodeAndApply<time_command_t>(data, [&](const auto& c) {
+      TimeControl control;
+      const std::string problem = TimeControlOf(c, &control);
+      return problem.empty() ? session->ApplyTime(control) : problem;
+    });
+  }
   if (channel == "MODEL") {
     return DecodeAndApply<model_t>(data, [&](const auto& c) {
       ModelSwitch model;
@@ -203,7 +228,7 @@ std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint
     });
   }
   if (channel == "REFRESH") return DecodeAndApply<refresh_request_t>(data, [](const auto&) { return ""; });
-  return "channel " + channel + ": not a command channel; allowed WIND, PARAM, CAMERA, KEYFRAME, MODEL, REFRESH";
+  return "channel " + channel + ": not a command channel; allowed WIND, PARAM, CAMERA, KEYFRAME, TIME, MODEL, REFRESH";
 }
 
 }  // namespace flagsim

@@ -11,6 +11,7 @@
 #include "flagsim/keyframe_command_t.hpp"
 #include "flagsim/model_t.hpp"
 #include "flagsim/param_command_t.hpp"
+#include "flagsim/time_command_t.hpp"
 #include "flagsim/timeline_key_t.hpp"
 #include "flagsim/wind_command_t.hpp"
 #include "server/model/auto_model.hpp"
@@ -29,13 +30,16 @@ std::string TimelineEditOf(const keyframe_command_t& command, TimelineEdit* edit
 /// A key from the wire; "" or what is wrong with it as sent. `law`: whether key.law is read.
 std::string KeyOf(const timeline_key_t& message, bool law, sim::Keyframe* key);
 
+/// The clock control a TIME command asks for; "" or what is wrong with its operation.
+std::string TimeControlOf(const time_command_t& command, TimeControl* control);
+
 /// auto's decision as the session takes it; "" or what is wrong with it as sent.
 std::string ModelSwitchOf(const model_t& message, ModelSwitch* model);
 /// The MODEL message journaling `decision`.
 model_t ModelMessageOf(const model::ModelDecision& decision, int64_t utime);
 
 /// Decodes `data` as the command type of `channel` (unprefixed: WIND, PARAM, CAMERA, KEYFRAME,
-/// and MODEL, auto's decisions as the journal holds them; REFRESH changes nothing here) and applies it to `session`. Returns "" or why it could not be
+/// TIME, and MODEL, auto's decisions as the journal holds them; REFRESH changes nothing here) and applies it to `session`. Returns "" or why it could not be
 /// decoded or was rejected (then the session is unchanged).
 std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint8_t>& data, Session* session);
 

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "common/printable_text.hpp"
 #include "messages/checked_decode.hpp"
@@ -57,6 +58,20 @@ std::string TimelineNote(const sim::Timeline& timeline, const CommandSets& sets)
          " from the next step on (keyframe pause leaves them to commands)";
 }
 
+/// After a reset: the clock is the viewer's, and a reset leaves it; say so where it is not real time.
+std::string ClockNote(const Session& session, const std::string& note) {
+  std::string clock;
+  if (session.paused()) clock = "the simulation stays paused (flagctl time resume)";
+  const double scale = session.scene().service.time_scale;
+  if (scale != 1) {
+    char text[96];
+    std::snprintf(text, sizeof(text), "time_scale stays %g (a reset leaves it; flagctl time scale 1)", scale);
+    clock += (clock.empty() ? "" : "; ") + std::string(text);
+  }
+  if (clock.empty()) return note;
+  return note.empty() ? clock : note + "; " + clock;
+}
+
 }  // namespace
 
 CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& session, ServerStats& stats,
@@ -72,6 +87,7 @@ CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& sessio
   Subscribe<refresh_request_t>(channels.refresh, &CommandIntake::ApplyRefresh);
   Subscribe<camera_command_t>(channels.camera, &CommandIntake::ApplyCamera);
   Subscribe<keyframe_command_t>(channels.keyframe, &CommandIntake::ApplyKeyframe);
+  Subscribe<time_command_t>(channels.time, &CommandIntake::ApplyTime);
 }
 
 template <class Command>
@@ -183,6 +199,7 @@ std::string CommandIntake::ApplyParams(const param_command_t& command) {
   params_changed_ |= problem.empty();
   timeline_changed_ |= problem.empty() && change.reset_to_scene;  // back to the scene's timeline
   if (problem.empty()) note_ = TimelineNote(session_.scene().timeline, {false, false, command.names});
+  if (problem.empty() && change.reset_to_scene) note_ = ClockNote(session_, note_);
   return problem;
 }
 
@@ -217,6 +234,12 @@ std::string CommandIntake::ApplyKeyframe(const keyframe_command_t& command) {
   if (problem.empty()) problem = session_.ApplyTimeline(edit);
   timeline_changed_ |= problem.empty();
   return problem;
+}
+
+std::string CommandIntake::ApplyTime(const time_command_t& command) {
+  TimeControl control;
+  const std::string problem = TimeControlOf(command, &control);
+  return problem.empty() ? session_.ApplyTime(control) : problem;
 }
 
 static_assert(std::tuple_size_v<decltype(ServerStats::commands_refused)> ==

@@ -1,4 +1,4 @@
-// Command intake: the server's command channels (WIND, PARAM, CAMERA, KEYFRAME, REFRESH). Each message is
+// Command intake: the server's command channels (WIND, PARAM, CAMERA, KEYFRAME, TIME, REFRESH). Each message is
 // decoded from raw bytes with every length checked (wire::CheckedDecode), checked for its signature when
 // the server has keys (command_authenticator.hpp), answered on ACK, and applied to the session only if
 // valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the server. A retry
@@ -29,6 +29,7 @@
 #include "flagsim/keyframe_command_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
+#include "flagsim/time_command_t.hpp"
 #include "flagsim/wind_command_t.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
@@ -99,6 +100,7 @@ class CommandIntake {
   std::string ApplyRefresh(const refresh_request_t& command);
   std::string ApplyCamera(const camera_command_t& command);
   std::string ApplyKeyframe(const keyframe_command_t& command);
+  std::string ApplyTime(const time_command_t& command);
 
   void Refuse(const std::string& channel, const std::string& client_id, int64_t sequence,
               const CommandAuthenticator::Verdict& verdict);

@@ -14,7 +14,7 @@ state_t MakeStateMessage(const Session& session, int64_t utime) {
   const FlagSimulation& simulation = session.simulation();
   const auto& model = simulation.model();
   const auto& state = simulation.state();
-  state_t message;
+  state_t message{};
   message.utime = utime;
   message.step = state.step;
   message.sim_time = state.time;
@@ -60,7 +60,7 @@ FrameInfo MakeFrameInfo(const Session& session, int64_t utime) {
 }
 
 params_t MakeParamsMessage(const Scene& scene, int64_t utime) {
-  params_t message;
+  params_t message{};
   message.utime = utime;
   for (const Parameter& parameter : ParameterTable::Get().parameters()) {
     parameter_t row;
@@ -115,7 +115,7 @@ status_t MakeStatusMessage(const Session& session, const ServerStats& stats, con
     return window.wall_seconds > 0 ? count / window.wall_seconds : 0.0;
   };
   const auto mean_us = [](double seconds, int64_t count) { return count > 0 ? 1e6 * seconds / count : 0.0; };
-  status_t message;
+  status_t message{};
   message.utime = utime;
   message.uptime = window.uptime;
   message.step = simulation.state().step;
@@ -127,6 +127,9 @@ status_t MakeStatusMessage(const Session& session, const ServerStats& stats, con
   message.threads = simulation.params().threads;
   message.integrator = sim::IntegratorName(simulation.params().integrator);
   message.sleeping = simulation.sleeping();
+  message.paused = session.paused();
+  message.steps_owed = int32_t(session.steps_owed());
+  message.time_scale = session.scene().service.time_scale;
   message.step_time_us = mean_us(stats.step_seconds, stats.steps);
   message.publish_time_us = mean_us(stats.publish_seconds, stats.states_published);
   message.state_rate_hz = per_second(double(stats.states_published));
@@ -189,7 +192,10 @@ void WriteModelStatus(const Session& session, const std::optional<model::ModelDe
     message->model_cost = decisions->in_force.cost;
   }
   const bool all_auto = scene.model.auto_integrator && scene.model.auto_grid;
-  const bool behind = !message->sleeping && message->real_time_factor > 0 && message->real_time_factor < 0.99;
+  // Behind: slower than the clock asks for (time_scale), while it runs.
+  const double asked = scene.service.time_scale;
+  const bool behind = !message->sleeping && !message->paused && message->real_time_factor > 0 &&
+                      message->real_time_factor < 0.99 * asked;
   std::string note;
   if (!decisions) {
     note = "auto has not decided yet";
@@ -201,7 +207,12 @@ void WriteModelStatus(const Session& session, const std::optional<model::ModelDe
                                              scene.model.auto_grid ? "the integrator" : "the integrator and the grid") +
            "; auto would choose " + model::Describe(decisions->free);
   }
-  if (behind) note += "; real time not held: " + Number("%.2f", message->real_time_factor) + " of real time";
+  if (behind && asked == 1) {
+    note += "; real time not held: " + Number("%.2f", message->real_time_factor) + " of real time";
+  } else if (behind) {
+    note += "; time_scale " + Number("%g", asked) + " not held: " + Number("%.2f", message->real_time_factor) +
+            " simulated s per s";
+  }
   message->model_note = note;
 }
 

@@ -1,7 +1,9 @@
 #include "server/service/server.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 #include <utility>
 
 #include <spdlog/spdlog.h>
@@ -68,6 +70,11 @@ void Server::Run(const std::atomic<bool>& stop) {
   PublishStatus(options_.clock());
 }
 
+void Server::DrainFrames() {
+  frames_.Drain();
+  while (paced_.queued() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
 bool Server::Ended() const {
   return options_.duration > 0 && session_.simulation().state().time >= start_time_ + options_.duration;
 }
@@ -81,29 +88,50 @@ double Server::Tick(double now) {
     AtBoundary();  // the session's first checkpoint, STATE and frame
   }
   bus_.HandleAll();
+  // Held still, no step comes to settle a command under: its answer goes out now.
+  if (!session_.Runs()) intake_.FlushPending();
   StepDue(now);
+  // Held still after steps taken by hand: the state they reached goes out, wherever it fell.
+  if (!session_.Runs() && state_published_at_ != session_.simulation().state().step) PublishState();
   PublishDue(now);
+  const double frame_rate = session_.scene().service.frame_rate;
+  if (FramesOnTheClock() && wall_frames_.Due(now, frame_rate)) frame_due_ = true;
   FrameDue();
-  if (options_.fast) return 0;
-  // Asleep, steps only move the clock: take them in batches and let the machine rest.
-  const double until_step =
-      session_.simulation().sleeping() ? kMaxWait : session_.scene().sim.dt - accumulator_;
+  if (options_.fast && session_.Runs()) return 0;
+  // Asleep, steps only move the clock: take them in batches and let the machine rest. Paused,
+  // no step is due until a command comes.
+  const double scale = session_.scene().service.time_scale;
+  const double until_step = session_.simulation().sleeping() || !session_.Runs()
+                                ? kMaxWait
+                                : (session_.scene().sim.dt - accumulator_) / scale;
+  const double until_frame = FramesOnTheClock() && frame_rate > 0 ? wall_frames_.next() - now : INFINITY;
   const double longest = keyframe_request_ >= 0 ? kKeyframeWait : kMaxWait;
-  const double until_due = std::min({until_step, next_second_ - now, UntilKeyframeDue(now)});
+  const double until_due = std::min({until_step, until_frame, next_second_ - now, UntilKeyframeDue(now)});
   return std::clamp(until_due, 0.0, longest);
 }
 
-// Real time: the accumulator owes the simulation the clock's time since the last tick, in whole
-// steps; a loop that fell far behind drops the excess rather than spiralling. --fast: steps for
-// kFastBatch of the clock (at least one), then the publications get their turn. In real time a
-// batch ends after kSteppingBatch of the clock, and what is still owed is stepped at the next
-// tick. The bus is handled after every step: a keyframe request due ends the batch.
+bool Server::FramesOnTheClock() const {
+  return !options_.fast && (session_.paused() || session_.scene().service.time_scale != 1);
+}
+
+// Real time: the accumulator owes the simulation the clock's time since the last tick times
+// time_scale, in whole steps; a loop that fell far behind drops the excess rather than
+// spiralling. Paused, it owes nothing but the steps a TIME step asked for, taken back to back.
+// --fast: steps for kFastBatch of the clock (at least one), then the publications get their
+// turn. In real time a batch ends after kSteppingBatch of the clock, and what is still owed is
+// stepped at the next tick. The bus is handled after every step: a keyframe request due ends
+// the batch, and a TIME pause stops it.
 void Server::StepDue(double now) {
-  const double dt = session_.scene().sim.dt;
-  accumulator_ = options_.fast ? 0.0 : std::min(accumulator_ + (now - last_tick_), kMaxCatchUp);
+  const double dt = session_.scene().sim.dt, scale = session_.scene().service.time_scale;
+  const bool owes_time = !options_.fast && !session_.paused();
+  accumulator_ = owes_time ? std::min(accumulator_ + (now - last_tick_) * scale, kMaxCatchUp * scale) : 0.0;
   last_tick_ = now;
   const double deadline = now + (options_.fast ? kFastBatch : kSteppingBatch);
-  while ((options_.fast || accumulator_ >= dt) && !Ended()) {
+  const auto due = [&] {
+    if (!session_.Runs() || Ended()) return false;
+    return options_.fast || session_.paused() || accumulator_ >= dt;  // paused: a step owed
+  };
+  while (due()) {
     const double start = options_.clock();
     integrator_replaced_ |= session_.Step();
     const double end = options_.clock();
@@ -133,7 +161,7 @@ void Server::AtBoundary() {
   if (const auto decision = governor_.AtBoundary(session_)) SwitchModel(*decision);
   const BoundaryDue due = schedule_.At(session_);
   if (due.state) PublishState();
-  if (due.frame) {
+  if (due.frame && !FramesOnTheClock()) {
     if (frame_due_) ++stats_.frames_skipped;
     frame_due_ = true;
     FrameDue();  // at its own step, not after the batch: the stage takes a copy and the loop goes on
@@ -218,6 +246,7 @@ void Server::PublishState() {
   state_t state = MakeStateMessage(session_, UnixMicros());
   state.server_id = presence_.id();
   bus_.Publish(channels_.state, state);
+  state_published_at_ = state.step;
   stats_.publish_seconds += options_.clock() - start;
   ++stats_.states_published;
 }
@@ -227,6 +256,7 @@ void Server::PublishState() {
 void Server::FrameDue() {
   if (!frame_due_) return;  // due by the frame rate, or asked for by REFRESH (even at frame_rate 0)
   // Asleep, with nothing changed since a frame drawn asleep, a new frame would be the same.
+  // (Paused, frames go on at the frame rate: the stream's rolling refresh goes on with them.)
   const bool asleep = session_.simulation().sleeping();
   const bool keyframe = keyframe_request_ >= 0;
   if (asleep && drawn_asleep_ && drawn_revision_ == session_.revision() && !keyframe) {

@@ -1,14 +1,18 @@
 // flagd's main loop, a pipeline of three threads over one worker pool:
 //
 //   loop:  commands      bus.Handle: decode, validate, apply, ACK (between steps)
-//          step          real time: as many dt steps as the clock allows (an accumulator);
-//                        --fast: steps back to back
+//          step          real time: as many dt steps as the clock allows (an accumulator
+//                        filled at time_scale simulated seconds per wall second); paused
+//                        (TIME): only the steps a TIME step owes; --fast: steps back to back
 //          publish       STATE every 1/state_rate of simulated time (BoundarySchedule: at the
-//                        steps a render publishes it), and at once on REFRESH; PARAMS and
+//                        steps a render publishes it), at once on REFRESH, and where steps
+//                        taken by hand (TIME step) left a paused flag; PARAMS and
 //                        TIMELINE each second, after a change and on REFRESH; STATUS each
 //                        second, and the last second's again on REFRESH
 //          frame         every 1/frame_rate of simulated time (BoundarySchedule): a copy of
-//                        what the frame shows goes to the frame stage, and the loop steps on
+//                        what the frame shows goes to the frame stage, and the loop steps on;
+//                        paused or at a time_scale other than 1, every 1/frame_rate of the
+//                        clock instead, so camera moves and parameter changes show at once
 //          wait          on the bus until the next step or publication is due
 //   frame stage          draws the copy, picks and compresses the changed tiles (frame_stage.hpp)
 //   paced publisher      sends them no faster than the receivers keep up (paced_publisher.hpp)
@@ -75,8 +79,9 @@ class Server {
   /// something is due next.
   double Tick(double now);
 
-  /// Waits until the frame stage has sent the frame in hand to the paced publisher.
-  void DrainFrames() { frames_.Drain(); }
+  /// Waits until the frame stage has sent the frame in hand to the paced publisher, and the
+  /// publisher has sent it on.
+  void DrainFrames();
 
   const Session& session() const { return session_; }
   const ServerStats& stats() const { return stats_; }
@@ -96,6 +101,8 @@ class Server {
   };
   Server(Bus& bus, const Channels& channels, Start start, const ServerOptions& options);
   bool Ended() const;  ///< the duration has run
+  /// Whether frames follow the clock rather than simulated time: paused, or not at real time.
+  bool FramesOnTheClock() const;
   void StepDue(double now);
   void AfterStep();
   void AtBoundary();
@@ -130,11 +137,13 @@ class Server {
   double accumulator_ = 0;  ///< s of wall time owed to the simulation
   double last_tick_ = -1;
   BoundarySchedule schedule_;  ///< STATE and frames, on simulated time
+  SimCadence wall_frames_;     ///< frames on the clock, while it does not run at real time
   bool frame_due_ = false;
   int64_t keyframe_request_ = -1;     ///< a REFRESH to answer with the next frame; -1: none
   int64_t keyframe_asked_ = -1;       ///< a REFRESH waiting for its turn (kKeyframesPerSecond); -1: none
   double keyframe_answered_ = -INFINITY;  ///< s on the clock: when a keyframe request was last taken
   bool integrator_replaced_ = false;  ///< by the guard: PARAMS is due
+  int64_t state_published_at_ = -1;   ///< the step of the last STATE
   bool drawn_asleep_ = false;         ///< the last frame was drawn with the flag asleep
   int64_t drawn_revision_ = -1;       ///< the session's revision when it was drawn
   double next_second_ = 0;            ///< s, monotonic, when PARAMS and STATUS are next due

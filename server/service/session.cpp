@@ -150,8 +150,12 @@ std::string Session::ApplyParams(const ParamChange& change) {
   }
   // Work on a copy; the session changes only if every assignment and the whole are valid.
   Scene next = change.reset_to_scene ? AtTimelineStart(initial_) : scene_;
-  // A reset restarts the physics; the camera is the viewer's and has a reset of its own.
-  if (change.reset_to_scene) next.camera = scene_.camera;
+  // A reset restarts the physics; the camera is the viewer's and has a reset of its own, and
+  // the clock's speed is the viewer's too.
+  if (change.reset_to_scene) {
+    next.camera = scene_.camera;
+    next.service.time_scale = scene_.service.time_scale;
+  }
   std::string problems;
   for (const auto& [name, value] : change.assignments) {
     const std::string problem = ParameterTable::Get().Assign(name, value, &next);
@@ -236,7 +240,28 @@ const Geomorph* Session::geomorph() const {
   return &*geomorph_;
 }
 
+std::string Session::ApplyTime(const TimeControl& control) {
+  switch (control.operation) {
+    case TimeControl::kPause:
+    case TimeControl::kResume:
+      paused_ = control.operation == TimeControl::kPause;
+      steps_owed_ = 0;
+      return "";
+    case TimeControl::kStep:
+      if (control.steps < 1 || control.steps > kMaxStepsOwed - steps_owed_) {
+        return "steps: " + std::to_string(control.steps) + " is out of range; allowed 1 .. " +
+               std::to_string(kMaxStepsOwed - steps_owed_) +
+               (steps_owed_ > 0 ? " (" + std::to_string(steps_owed_) + " still owed)" : "");
+      }
+      paused_ = true;
+      steps_owed_ += control.steps;
+      return "";
+  }
+  return "operation: unknown";
+}
+
 bool Session::Step() {
+  if (steps_owed_ > 0) --steps_owed_;
   if (scene_.timeline.playing()) FollowTimeline();
   simulation_.Step();
   if (simulation_.params().integrator == scene_.sim.integrator) return false;

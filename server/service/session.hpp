@@ -15,6 +15,7 @@
 // bit for bit, at any thread count.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -47,6 +48,13 @@ struct TimelineEdit {
   /// kAdd: the key, replacing one at its time. kChange: the controls it sets replace the key's
   /// (the others stay), and the key moves to key.time.
   sim::Keyframe key;
+};
+
+/// One TIME command: the simulation's clock held, stepped by hand or run on.
+struct TimeControl {
+  enum Operation { kPause, kResume, kStep };
+  Operation operation = kPause;
+  int64_t steps = 0;  ///< kStep: steps to take, then paused
 };
 
 /// A decision of auto (MODEL, model_governor.hpp): the model to switch to.
@@ -97,6 +105,17 @@ class Session {
   /// removed) they glide from the values in force instead.
   std::string ApplyTimeline(const TimelineEdit& edit);
 
+  /// Pauses, resumes or steps the simulation's clock; "" or why it was rejected (then nothing
+  /// changed). Only the live server's loop reads it (Runs, StepsOwed); a replay steps as the
+  /// journal says, so a session with pauses replays as one without them.
+  std::string ApplyTime(const TimeControl& control);
+  /// Whether the live clock runs: not paused, or steps a kStep asked for are still owed.
+  bool Runs() const { return !paused_ || steps_owed_ > 0; }
+  bool paused() const { return paused_; }
+  int64_t steps_owed() const { return steps_owed_; }
+
+  static constexpr int64_t kMaxStepsOwed = 100000;  ///< steps a kStep may ask for, with those still owed
+
   /// One step of the flag, under the timeline's controls if it plays. If the guard replaced the
   /// integrator, the scene follows (PARAMS shows it, and the next PARAM builds on it); returns
   /// true then.
@@ -127,6 +146,8 @@ class Session {
   int64_t revision_ = 0;
   std::optional<Geomorph> geomorph_;
   int substeps_segment_ = kNoSegment;  ///< the timeline segment the substeps were fixed for
+  bool paused_ = false;                ///< TIME pause, or a TIME step's steps taken
+  int64_t steps_owed_ = 0;             ///< steps a TIME step has still to take
   bool substeps_fixed_ = false;        ///< by the timeline, not by the simulation's own choice
 };
 

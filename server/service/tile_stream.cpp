@@ -169,7 +169,7 @@ std::vector<tile_t> TileStream::Compress(const render::Framebuffer& image, const
 // The FRAME message that closes the frame: its tiles, the whole image's hash and the camera.
 frame_t TileStream::Manifest(const render::Framebuffer& image, const FrameInfo& info, bool keyframe,
                              std::vector<int32_t> chosen) {
-  frame_t manifest;
+  frame_t manifest{};
   manifest.utime = info.utime;
   manifest.frame_id = next_frame_id_++;
   manifest.step = info.step;

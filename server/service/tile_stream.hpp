@@ -43,7 +43,7 @@ struct TileBox {
 /// One frame's messages, in publishing order: tiles, then the manifest.
 struct EncodedFrame {
   std::vector<tile_t> tiles;
-  frame_t manifest;
+  frame_t manifest{};
   size_t encoded_bytes = 0;  ///< tile payloads, compressed
 };
 

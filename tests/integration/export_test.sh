@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # flagd render and flagctl export as real processes, no network: a short scene rendered to a log
-# and PNGs, the log exported to PNGs, an MP4 and a GIF (frames counted by ffprobe), a copy cut
+# and PNGs, the log exported to PNGs, an MP4, a GIF (frames counted by ffprobe) and MCAP (read
+# by @mcap/core, Foxglove's reader, when tests/web's dependencies are installed), a copy cut
 # mid-event exported up to its cut, and bad arguments. Needs ffmpeg (scripts/install-deps.sh).
 # Usage: export_test.sh BUILD_DIR
 set -euo pipefail
@@ -69,6 +70,20 @@ equal "$(ffprobe -v error -select_streams v:0 -show_entries stream=codec_name,pi
   -of csv=p=0 "$work/run.mp4")" "h264,200,116,yuv420p,$fps/1" "  H.264, yuv420p, padded to even, at $fps fps"
 expect 0 "export to GIF" "$flagctl" export "$log" -o "$work/run.gif"
 equal "$(frames_in "$work/run.gif")" "$expected" "  frames in the GIF"
+
+echo "-- MCAP, read by Foxglove's own reader"
+expect 0 "export to MCAP" "$flagctl" export "$log" -o "$work/run.mcap"
+matches "run.mcap: [0-9]+ messages, .*$expected on /flag/image" "  one image per frame, and the other channels, counted"
+expect 2 "--fps with MCAP" "$flagctl" export "$log" -o "$work/x.mcap" --fps 5
+contains "--fps is for videos" "  says it is for videos"
+web_tests=$(cd "$(dirname "$0")/../web" && pwd)
+if command -v node >/dev/null && [[ -d $web_tests/node_modules/@mcap/core ]]; then
+  if node "$web_tests/mcap_check.mjs" "$work/run.mcap" /flag/image /flag/scene /flag/state /flag/params >"$work/mcap.out" 2>&1; then
+    pass "  @mcap/core streams and seeks it, every message decoding with its schema"
+  else fail "  @mcap/core on the MCAP file" "$work/mcap.out"; fi
+else
+  echo "SKIP  @mcap/core on the MCAP file: node or tests/web's dependencies are not installed"
+fi
 
 echo "-- a log cut mid-event (a recorder killed mid-write)"
 size=$(stat -c %s "$log")

@@ -1,9 +1,14 @@
 // The live view in a real browser (Debian's Chromium, headless, driven by playwright-core):
 // the picture is the server's frame byte for byte, dragging orbits the camera, the parameter
-// panel sets a value and shows a rejection's reason, the keyboard resets the view, and a
-// timeline key is added and played. Leaves a screenshot of the page in OUT_DIR.
-//   node browser_test.mjs PAGE_URL FLAGCTL PREFIX OUT_DIR     (LCM_DEFAULT_URL in the environment)
-import { execFile } from "node:child_process";
+// panel sets a value and shows a rejection's reason, the keyboard resets the view, a timeline
+// key is added and played, the clock pauses and steps, a recording downloads as MCAP and MP4,
+// the page fits a phone and a pinch zooms, a linked view is offered, and the page follows flagd
+// stopped and started again. Leaves screenshots of the page in OUT_DIR.
+//   node browser_test.mjs PAGE_URL FLAGCTL PREFIX OUT_DIR FLAGD PID_FILE
+// (LCM_DEFAULT_URL in the environment; PID_FILE holds the running flagd's pid, and the new
+// one's once this test has started it again.)
+import { execFile, spawn } from "node:child_process";
+import { openSync, readFileSync, writeFileSync } from "node:fs";
 import { createHash } from "node:crypto";
 import { promisify } from "node:util";
 
@@ -12,8 +17,9 @@ import { chromium } from "playwright-core";
 import { check, run, section, waitFor } from "./checks.mjs";
 import { readPngRGB } from "./png.mjs";
 
-const [pageUrl, flagctl, prefix, outDir] = process.argv.slice(2);
+const [pageUrl, flagctl, prefix, outDir, flagd, pidFile] = process.argv.slice(2);
 const execute = promisify(execFile);
+const mcapCheck = new URL("./mcap_check.mjs", import.meta.url).pathname;
 
 /** flagctl SUBCOMMAND... on the test's server; its stdout. */
 async function flagctlRun(...args) {
@@ -238,6 +244,166 @@ async function checkTimeline(page) {
   await page.locator("#timeline-body button.play").click();
 }
 
+
+async function checkClock(page) {
+  section("the simulation's clock");
+  const clock = page.locator("#clock-tools");
+  await clock.getByRole("button", { name: "Pause" }).click();
+  await waitFor(() => hooks(page, () => window.flagsim.status?.paused === true), 10, "STATUS to say paused");
+  const held = await waitFor(() => hooks(page, () => window.flagsim.state), 5, "a STATE");
+  const framesBefore = await hooks(page, () => window.flagsim.framesShown);
+  await page.waitForTimeout(1500);
+  const later = await hooks(page, () => ({ state: window.flagsim.state, frames: window.flagsim.framesShown }));
+  check("Pause holds the state still (its hash the same after 1.5 s)",
+        later.state.state_hash === held.state_hash && later.state.step === held.step, { held: held.step, later: later.state.step });
+  check("  while frames keep coming", later.frames - framesBefore >= 10, later.frames - framesBefore);
+  check("  and the clock says so", (await clock.locator(".clock-readout").textContent()).startsWith("paused"));
+  await clock.locator("input.steps").fill("5");
+  await clock.getByRole("button", { name: "Step" }).click();
+  const stepped = await waitFor(() => hooks(page, (from) => {
+    const state = window.flagsim.state;
+    return window.flagsim.status?.steps_owed === 0 && state.step === from + 5 && state;
+  }, held.step), 10, "five steps taken");
+  check("Step 5 takes exactly five steps and holds again", stepped.step === held.step + 5, stepped.step);
+  await clock.locator("input.steps").fill("");
+  await clock.locator("input.steps").pressSequentially("abc");  // a number box takes none of it: its value is ""
+  const stepBefore = await hooks(page, () => window.flagsim.state.step);
+  await clock.getByRole("button", { name: "Step" }).click();
+  await page.waitForTimeout(300);
+  check("  a step count that is not one is refused on the page, and nothing is sent",
+        await clock.locator("input.steps.invalid").count() === 1 && await hooks(page, () => window.flagsim.state.step) === stepBefore);
+  await clock.locator("select").selectOption("0.5");
+  await waitFor(() => hooks(page, () => window.flagsim.status?.time_scale === 0.5), 10, "time_scale 0.5");
+  await clock.getByRole("button", { name: "Resume" }).click();
+  const running = await waitFor(() => hooks(page, () => {
+    const status = window.flagsim.status;
+    return status?.paused === false && status.real_time_factor > 0.3 && status.real_time_factor < 0.7 && status;
+  }), 10, "running at half speed");
+  check("Speed 0.5× runs at half real time", Boolean(running), running.real_time_factor);
+  await clock.locator("select").selectOption("1");
+  await waitFor(() => hooks(page, () => window.flagsim.status?.time_scale === 1), 10, "time_scale 1");
+}
+
+async function checkRecordingDownloads(page) {
+  section("a recording, downloaded as MCAP and MP4");
+  const tools = page.locator("#session-tools");
+  await tools.getByRole("button", { name: "Record" }).click();
+  await page.waitForTimeout(3000);
+  await tools.getByRole("button", { name: "Stop" }).click();
+  const mcap = tools.locator(".downloads a", { hasText: "MCAP" });
+  const mp4 = tools.locator(".downloads a", { hasText: "MP4" });
+  await mcap.waitFor({ state: "visible", timeout: 60000 });
+  await mp4.waitFor({ state: "visible", timeout: 60000 });
+  check("Stop offers the log, then its MCAP and MP4 as the gateway makes them",
+        await tools.locator(".downloads a").count() === 3);
+  const [download] = await Promise.all([page.waitForEvent("download"), mcap.click()]);
+  const file = `${outDir}/recording.mcap`;
+  await download.saveAs(file);
+  try {
+    const { stdout } = await execute("node", [mcapCheck, file, "/flag/image", "/flag/scene", "/flag/state", "/flag/status"]);
+    check("  the MCAP from the page reads in @mcap/core, every message with its schema", true, stdout);
+  } catch (error) {
+    check("  the MCAP from the page reads in @mcap/core, every message with its schema", false, error.stdout ?? error.message);
+  }
+  const response = await page.evaluate(async (href) => {
+    const got = await fetch(href);
+    const bytes = new Uint8Array(await got.arrayBuffer());
+    return { status: got.status, type: String.fromCharCode(...bytes.subarray(4, 8)), size: bytes.length };
+  }, await mp4.getAttribute("href"));
+  check("  the MP4 downloads (an ISO media file)", response.status === 200 && response.type === "ftyp" && response.size > 1000, response);
+}
+
+async function checkPhone(browser) {
+  section("a phone");
+  const context = await browser.newContext({ viewport: { width: 390, height: 844 }, isMobile: true, hasTouch: true, deviceScaleFactor: 2 });
+  const phone = await context.newPage();
+  await phone.goto(pageUrl);
+  await phone.waitForFunction(() => window.flagsim?.framesShown >= 2, null, { timeout: 20000 });
+  const widths = await phone.evaluate(() => {
+    const cut = [...document.querySelectorAll("#app button, #app input, #app select, #app label, #app h2")]
+      .filter((element) => element.getClientRects().length > 0 && element.getBoundingClientRect().right > window.innerWidth + 0.5)
+      .map((element) => element.textContent.trim() || element.outerHTML.slice(0, 60));
+    return { page: document.documentElement.scrollWidth, screen: window.innerWidth, cut };
+  });
+  check("the page fits a phone's width: nothing overflows sideways, no control is cut off",
+        widths.page <= widths.screen && widths.cut.length === 0, widths);
+  await phone.screenshot({ path: `${outDir}/phone.png`, fullPage: false });
+  const before = await hooks(phone, () => window.flagsim.camera);
+  const box = await phone.locator("#picture").boundingBox();
+  const cdp = await context.newCDPSession(phone);
+  const [cx, cy] = [box.x + box.width / 2, box.y + box.height / 2];
+  const fingers = (spread) => [{ x: cx - spread, y: cy, id: 1 }, { x: cx + spread, y: cy, id: 2 }];
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: fingers(20) });
+  for (let spread = 25; spread <= 80; spread += 5) {
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: fingers(spread) });
+    await phone.waitForTimeout(30);
+  }
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
+  const span = (camera) => Math.hypot(...camera.eye.map((value, k) => value - camera.target[k]));
+  const pinched = await waitFor(() => hooks(phone, (start) => {
+    const camera = window.flagsim.camera;
+    return camera.eye.some((value, k) => value !== start.eye[k]) && camera;
+  }, before), 10, "the camera after a pinch");
+  check("two fingers spread apart zoom in", span(pinched) < span(before), { before: span(before), after: span(pinched) });
+  await context.close();
+  await flagctlRun("camera", "reset");
+}
+
+async function checkTokenForm(browser) {
+  section("the token, given on the 401 page");
+  const context = await browser.newContext();
+  const page = await context.newPage();
+  const address = new URL(pageUrl);
+  const token = address.searchParams.get("token");
+  address.search = "";
+  const refused = await page.goto(address.toString());
+  check("without the token: 401, a page that says where it is", refused.status() === 401 &&
+        (await page.locator("h1").textContent()).includes("A token is needed"));
+  await page.locator('input[name="token"]').fill(token);
+  await page.getByRole("button", { name: "Open the live view" }).click();
+  await page.waitForFunction(() => window.flagsim?.framesShown >= 2, null, { timeout: 20000 });
+  check("  its form takes the token, and the live view opens", true);
+  await context.close();
+}
+
+/** The test's flagd, by the pid in PID_FILE. */
+function serverPid() {
+  return Number(readFileSync(pidFile, "utf8").trim());
+}
+
+async function checkServerStopAndRestart(page) {
+  section("flagd stopped, then started again");
+  process.kill(serverPid(), "SIGTERM");
+  const stoppedAt = Date.now();
+  const gone = await waitFor(() => hooks(page, () => {
+    const text = document.querySelector("#status-bar .connection")?.textContent ?? "";
+    return text.includes("server gone") && text;
+  }), 10, "the page to say the server is gone");
+  const goneAfter = (Date.now() - stoppedAt) / 1000;
+  check(`the page says the server is gone within 3 s (${goneAfter.toFixed(1)} s)`, goneAfter <= 3, gone);
+  const frameBefore = await hooks(page, () => window.flagsim.frame);
+  const log = openSync(`${outDir}/flagd-restarted.log`, "w");
+  const server = spawn(flagd, ["--prefix", prefix, "--log-level", "warn"], { detached: true, stdio: ["ignore", log, log] });
+  server.unref();
+  writeFileSync(pidFile, `${server.pid}\n`);
+  const startedAt = Date.now();
+  const said = await waitFor(() => hooks(page, () => {
+    const text = document.querySelector("#status-bar .connection")?.textContent ?? "";
+    return text.includes("server restarted") && text;
+  }), 30, "the page to say the server restarted");
+  const moving = await waitFor(() => hooks(page, (old) => {
+    const frame = window.flagsim.frame;
+    return frame.hashOk && frame.step !== old.step && frame.id < old.id && frame;
+  }, frameBefore), 30, "the new server's frames");
+  const firstStatus = await hooks(page, () => window.flagsim.status?.uptime ?? 0);
+  check("the page says \"server restarted\"", Boolean(said), said);
+  check(`  and shows the new server's frames (${((Date.now() - startedAt) / 1000).toFixed(1)} s after its start, ` +
+        `its uptime ${firstStatus.toFixed(1)} s)`, Boolean(moving), moving);
+  const movesOn = await hooks(page, (id) => window.flagsim.waitForFrame((frame) => frame.id >= id + 2 && frame.hashOk, 2000)
+    .then(() => true, () => false), moving.id);
+  check("  the picture moves on, frame after frame, within 2 s", movesOn);
+}
+
 await run(async () => {
   const browser = await chromium.launch({
     executablePath: "/usr/bin/chromium",
@@ -264,11 +430,20 @@ await run(async () => {
     await checkKeyboardReset(page);
     await checkZoomAndFrame(page);
     await checkTimeline(page);
+    await checkClock(page);
+    await checkRecordingDownloads(page);
+    await checkPhone(browser);
+    await checkTokenForm(browser);
     section("the shared camera, and a view as a link");
     const second = await browser.newPage({ viewport: { width: 1000, height: 700 } });
     const linked = new URL(pageUrl);
     linked.searchParams.set("view", "3,2.5,5,0.75,2,0,50");
     await second.goto(linked.toString());
+    const offer = second.locator("#view-offer");
+    await offer.waitFor({ state: "visible", timeout: 15000 });
+    const untouched = await hooks(page, () => window.flagsim.camera.eye[0] !== 3);
+    check("a linked view is offered, not forced on every viewer", untouched, await offer.textContent());
+    await offer.getByRole("button", { name: "Move the camera there" }).click();
     const shared = await waitFor(() => hooks(page, () => {
       const text = document.querySelector(".shared-camera")?.textContent ?? "";
       return text.includes("1 other viewer sees") && text;
@@ -279,7 +454,7 @@ await run(async () => {
       return camera.eye[0] === 3 && camera.eye[1] === 2.5 && camera.eye[2] === 5 && camera.target[0] === 0.75 &&
              Math.abs(camera.fov - 50) < 1e-9 && camera;
     }), 15, "the linked view in force");
-    check("  the view in the second viewer's link is the one every viewer sees", Boolean(view), view);
+    check("  taken, the view in the link is the one every viewer sees", Boolean(view), view);
     await page.getByRole("button", { name: "Link to view" }).click();
     await page.waitForTimeout(300);
     const address = new URL(page.url());
@@ -289,6 +464,7 @@ await run(async () => {
     await page.waitForTimeout(1500);  // the plots fill a little
     await page.screenshot({ path: `${outDir}/live-view.png` });
     check(`a screenshot of the page: ${outDir}/live-view.png`, true);
+    await checkServerStopAndRestart(page);
     check("no script errors on the page", errors.length === 0, errors);
   } finally {
     await browser.close();

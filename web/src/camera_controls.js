@@ -7,6 +7,7 @@
 //   x/X y/Y z/Z                   -> rotate_x / rotate_y / rotate_z by +-5 degrees
 //   arrows, PageUp/PageDown       -> translate right/left, up/down, toward/away from the target
 //   + / -                         -> zoom in / out;  f -> frame the flag;  r -> reset
+//   pinch (two fingers)           -> zoom toward the point between them, by their spread's ratio
 //
 // Moves go through a CallCoalescer: while one call is in flight, further deltas add up into one
 // waiting call per operation. A rejected move shows the server's reason on the picture.
@@ -40,6 +41,21 @@ export function mergeCameraMoves(waiting, next) {
   }
 }
 
+const kLeastPinchChange = 0.02;  ///< a pinch zooms once the fingers' spread changed by 2 %
+
+/// Two fingers from `before` to `after` ([{x, y}, {x, y}] screen px): { factor, x, y }, the
+/// spread's ratio (apart: above 1, in) and the point between them now; null while the spread has
+/// changed by less than kLeastPinchChange (or a finger sits on the other).
+export function pinchStep(before, after) {
+  if (before?.length !== 2 || after?.length !== 2) return null;
+  const spread = ([a, b]) => Math.hypot(a.x - b.x, a.y - b.y);
+  const from = spread(before), to = spread(after);
+  if (from < 1 || to < 1) return null;
+  const factor = to / from;
+  if (Math.abs(factor - 1) < kLeastPinchChange) return null;
+  return { factor, x: (after[0].x + after[1].x) / 2, y: (after[0].y + after[1].y) / 2 };
+}
+
 export class CameraControls {
   /// `stage`: the element under the pointer; `frameView` gives the picture's on-screen scale;
   /// `getCamera()` the newest `/flag/camera`; `toast(text)` shows a reason briefly.
@@ -49,6 +65,8 @@ export class CameraControls {
     this.getCamera = getCamera;
     this.toast = toast;
     this.drag = null;  // { x, y, mode: "orbit" | "pan", pointerId }
+    this.pointers = new Map();  // pointerId -> { x, y }: the fingers down, for a pinch
+    this.pinch = null;          // two fingers down: their positions when last zoomed
     this.settledListeners = [];  // called after each answer (the camera panel shows what is in force)
     this.coalescer = new CallCoalescer({
       send: (request) => connection.call("/flag/camera", request),
@@ -88,6 +106,8 @@ export class CameraControls {
   }
 
   onPointerDown(event) {
+    this.pointers.set(event.pointerId, { x: event.clientX, y: event.clientY });
+    if (this.pointers.size === 2) return this.startPinch(event);
     if (this.drag) return;
     const pan = event.button === 2 || event.button === 1 || event.shiftKey;
     this.drag = { x: event.clientX, y: event.clientY, mode: pan ? "pan" : "orbit", pointerId: event.pointerId };
@@ -99,6 +119,8 @@ export class CameraControls {
 
   /// pointer moved (dx, dy screen px) -> an orbit or a pan, merged while a call is in flight.
   onPointerMove(event) {
+    if (this.pointers.has(event.pointerId)) this.pointers.set(event.pointerId, { x: event.clientX, y: event.clientY });
+    if (this.pinch) return this.movePinch();
     if (!this.drag || event.pointerId !== this.drag.pointerId) return;
     const dx = event.clientX - this.drag.x;
     const dy = event.clientY - this.drag.y;
@@ -114,9 +136,37 @@ export class CameraControls {
     if (vector) this.move({ operation: "translate", vector });
   }
 
+  /// A second finger: the drag ends, and the two fingers' spread zooms from here on.
+  startPinch(event) {
+    if (this.drag) this.endDrag();
+    this.stage.setPointerCapture(event.pointerId);
+    this.pinch = [...this.pointers.values()];
+    event.preventDefault();
+  }
+
+  /// Fingers apart -> zoom in toward the point between them; together -> out.
+  movePinch() {
+    const now = [...this.pointers.values()];
+    const step = pinchStep(this.pinch, now);
+    if (!step) return;
+    this.pinch = now;
+    const pixel = this.frameView.imagePixelAt(step.x, step.y);
+    this.move(pixel ? { operation: "zoom_at", factor: step.factor, pixel } : { operation: "zoom", factor: step.factor });
+  }
+
   onPointerUp(event) {
+    this.pointers.delete(event.pointerId);
+    if (this.pinch && this.pointers.size < 2) {
+      this.pinch = null;
+      this.stage.releasePointerCapture?.(event.pointerId);
+      return;
+    }
     if (!this.drag || event.pointerId !== this.drag.pointerId) return;
-    this.stage.releasePointerCapture(event.pointerId);
+    this.endDrag();
+  }
+
+  endDrag() {
+    if (this.stage.hasPointerCapture?.(this.drag.pointerId)) this.stage.releasePointerCapture(this.drag.pointerId);
     this.stage.classList.remove("panning", "orbiting");
     this.drag = null;
   }

@@ -5,7 +5,7 @@
 //   /flag/camera   -> CameraControls (pixels -> metres), CameraPanel
 //   /flag/params   -> ParamPanel (+ protocol parameters), timeline keys
 //   /flag/state    -> WindPanel, Plots (tip, energy), TimelinePanel (playhead)
-//   /flag/status   -> Plots
+//   /flag/status   -> Plots, ClockControls (paused, time_scale)
 //   /flag/timeline -> TimelinePanel
 //   /flag/acks     -> status bar (last ACK)
 //   /gateway/status -> the camera panel (how many viewers share the camera)
@@ -13,6 +13,7 @@ import "uplot/dist/uPlot.min.css";  // uPlot's own rules first, the page's after
 import "../style.css";
 import { CameraControls } from "./camera_controls.js";
 import { CameraPanel } from "./camera_panel.js";
+import { ClockControls } from "./clock_controls.js";
 import { Connection, gatewayUrl } from "./connection.js";
 import { FrameImage } from "./frame_image.js";
 import { FrameView } from "./frame_view.js";
@@ -29,6 +30,7 @@ import { createHasher } from "./tile_decoder.js";
 import { TimelinePanel } from "./timeline_panel.js";
 import { readTimeline } from "./timeline_model.js";
 import { createToaster } from "./toast.js";
+import { el } from "./dom.js";
 import { WindPanel } from "./wind_panel.js";
 
 const kJsonTopics = ["/flag/state", "/flag/status", "/flag/params", "/flag/timeline", "/flag/camera", "/flag/acks", "/gateway/status"];
@@ -84,6 +86,7 @@ function createParts(page) {
   const cameraControls = new CameraControls({ stage: byId("stage"), frameView: page.view, connection, getCamera: () => page.camera, toast });
   return {
     statusBar: new StatusBar(byId("status-bar")),
+    clock: new ClockControls({ container: byId("clock-tools"), connection, toast }),
     cameraControls,
     cameraPanel: new CameraPanel({ container: byId("camera-body"), cameraControls, getCamera: () => page.camera }),
     paramPanel: new ParamPanel({ container: byId("param-body"), connection, toast }),
@@ -137,19 +140,30 @@ function wireConnection(page, parts) {
   connection.on("error", (text) => (page.lastError = text));
 }
 
-/// A link's view (`?view=`, view_link.js), put in force once, when the server's camera is first
-/// heard (the connection is up by then).
+/// A link's view (`?view=`, view_link.js), offered once the server's camera is first heard: the
+/// camera is shared, so moving it moves it for every viewer, and the person opening the link
+/// chooses to.
 function openLinkedView(page, parts) {
   if (page.linkedViewDone) return;
   page.linkedViewDone = true;
   const { view, problem } = readViewLink(window.location.search);
   if (problem) page.toast(problem, "error");
   if (!view) return;
-  for (const request of [{ operation: "eye", vector: view.eye }, { operation: "look_at", vector: view.target },
-                         { operation: "fov", degrees: view.fov }]) {
-    parts.cameraControls.move(request);
-  }
-  page.toast("The linked view is in force (the camera is shared: every viewer sees it)");
+  const offer = byId("view-offer");
+  for (const type of ["pointerdown", "wheel"]) offer.addEventListener(type, (event) => event.stopPropagation());
+  const close = () => (offer.hidden = true);
+  const apply = () => {
+    close();
+    for (const request of [{ operation: "eye", vector: view.eye }, { operation: "look_at", vector: view.target },
+                           { operation: "fov", degrees: view.fov }]) {
+      parts.cameraControls.move(request);
+    }
+  };
+  offer.replaceChildren(
+    el("span", {}, `This link carries a view (eye ${view.eye.join(", ")} m). The camera is shared: moving it moves it for every viewer.`),
+    el("button", { type: "button", class: "primary", onclick: apply }, "Move the camera there"),
+    el("button", { type: "button", onclick: close }, "Not now"));
+  offer.hidden = false;
 }
 
 /// The connection field: the gateway's connection, and whether a server is behind it.
@@ -177,6 +191,7 @@ function onJsonMessage(page, parts, topic, message) {
       showConnection(page, parts);
       page.status = message;
       parts.statusBar.setModel(message);
+      parts.clock.update(message);
       parts.plots.addStatus(message, page.view.shownFps());
       break;
     case "/flag/params":

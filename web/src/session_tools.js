@@ -3,8 +3,9 @@
 //   Snapshot --(the picture's frame hash checked)--> the canvas as frame-ID.png, downloaded
 //   Link     --> the address with this view (view_link.js), in the address bar and the clipboard
 //   Full screen --> the picture alone on the screen (Esc leaves)
-//   Record   --`/flag/record` start--> polled with status each second --stop--> a download link to
-//            its `url`, with the page's token
+//   Record   --`/flag/record` start--> polled with status each second --stop--> download links,
+//            with the page's token: the LCM log at once, then its MCAP (Foxglove, Lichtblick) and
+//            MP4 as the gateway makes them (polled until each is ready or failed)
 import { el, formatBytes, formatNumber } from "./dom.js";
 import { viewLinkFor } from "./view_link.js";
 
@@ -26,10 +27,10 @@ export class SessionTools {
     this.snapshotButton = el("button", { type: "button", title: "download the picture as PNG (only a frame whose hash checked)", onclick: () => this.snapshot() }, "Snapshot");
     this.recordButton = el("button", { type: "button", class: "record", title: "record every channel of the server to an LCM log", onclick: () => this.toggleRecord() }, "Record");
     this.recordText = el("span", { class: "record-text" });
-    this.download = el("a", { class: "download", hidden: true });
+    this.downloads = el("span", { class: "downloads" });
     const link = el("button", { type: "button", title: "a link that opens this view (eye, target, field of view): in the address bar and copied", onclick: () => this.linkToView() }, "Link to view");
     const fullScreen = el("button", { type: "button", title: "the picture alone on the screen; Esc leaves", onclick: () => this.fullScreen() }, "Full screen");
-    container.append(link, fullScreen, this.snapshotButton, this.recordButton, this.recordText, this.download);
+    container.append(link, fullScreen, this.snapshotButton, this.recordButton, this.recordText, this.downloads);
     this.updateFrame();
   }
 
@@ -87,7 +88,7 @@ export class SessionTools {
     ).finally(() => (this.recordButton.disabled = false));
   }
 
-  /// A `/flag/record` answer: { recording, file, url, events, bytes, seconds, error }.
+  /// A `/flag/record` answer: { recording, file, url, events, bytes, seconds, error, exports }.
   showRecord(answer) {
     this.recording = Boolean(answer?.recording);
     this.recordButton.textContent = this.recording ? "Stop" : "Record";
@@ -95,9 +96,11 @@ export class SessionTools {
     const figures = `${formatNumber(answer?.seconds ?? 0, 3)} s · ${answer?.events ?? 0} events · ${formatBytes(answer?.bytes ?? 0)}`;
     this.recordText.className = `record-text${answer?.error ? " error" : ""}`;
     this.recordText.textContent = answer?.error ? `record: ${answer.error}` : this.recording ? `● ${figures}` : answer?.url ? figures : "";
-    this.showDownload(this.recording ? "" : answer?.url, answer?.file);
+    const exports = this.recording ? {} : answer?.exports ?? {};
+    this.showDownloads(this.recording ? "" : answer?.url, answer?.file, exports);
     clearTimeout(this.pollTimer);
-    if (this.recording) this.pollTimer = setTimeout(() => this.poll(), kPollPeriod);
+    const making = Object.values(exports).some((entry) => entry.state === "waiting" || entry.state === "making");
+    if (this.recording || making) this.pollTimer = setTimeout(() => this.poll(), kPollPeriod);
   }
 
   poll() {
@@ -106,12 +109,20 @@ export class SessionTools {
     });
   }
 
-  showDownload(url, file) {
-    this.download.hidden = !url;
-    if (!url) return;
-    this.download.href = this.withToken(url);
-    const name = String(file || url).split("/").pop();
-    this.download.textContent = `Download ${name}`;
-    this.download.setAttribute("download", name);
+  /// The log's link, and one per export: a link once ready, else what it is doing or why it failed.
+  showDownloads(url, file, exports) {
+    if (!url) {
+      this.downloads.replaceChildren();
+      return;
+    }
+    const link = (href, label) => el("a", { class: "download", href: this.withToken(href), download: href.split("/").pop() }, label);
+    const parts = [link(url, `${String(file || url).split("/").pop()}`)];
+    for (const [format, entry] of Object.entries(exports)) {
+      const name = format.toUpperCase();
+      if (entry.state === "ready") parts.push(link(entry.url, name));
+      else if (entry.state === "failed") parts.push(el("span", { class: "export-state error", title: entry.error }, `${name} failed`));
+      else parts.push(el("span", { class: "export-state" }, `${name} ${entry.state === "making" ? "being made" : "waiting"} …`));
+    }
+    this.downloads.replaceChildren(el("span", { class: "muted" }, "Download:"), ...parts);
   }
 }

@@ -67,7 +67,7 @@ TEST_F(GatewayTest, ANewClientHearsWhoWeAreWhatWeSendAndWhatWeServe) {
   EXPECT_EQ(client_.texts[1]["channels"].size(), kChannelCount);
   EXPECT_EQ(client_.texts[1]["channels"][kImageChannel - 1]["schemaName"], "foxglove.CompressedImage");
   EXPECT_EQ(client_.texts[2]["op"], "advertiseServices");
-  EXPECT_EQ(client_.texts[2]["services"].size(), 6u);
+  EXPECT_EQ(client_.texts[2]["services"].size(), 7u);
   for (const json& channel : client_.texts[1]["channels"]) {
     if (channel["encoding"] == "json") {
       EXPECT_FALSE(json::parse(channel["schema"].get<std::string>(), nullptr, false).is_discarded())
@@ -143,6 +143,26 @@ TEST_F(GatewayTest, ACommandServiceIsAnsweredWithTheServersAck) {
   EXPECT_EQ(result["channel"], "WIND");
   EXPECT_GE(result["step"].get<int64_t>(), 0);
   EXPECT_EQ(server_.session().scene().wind.velocity, (sim::Vec3{9, 0, 1}));
+}
+
+TEST_F(GatewayTest, TheClockServicePausesStepsAndResumesTheServer) {
+  client_.Call(kTimeService, 1, R"({"operation": "pause"})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(1) > 0; }));
+  EXPECT_TRUE(client_.responses[1]["accepted"]) << client_.responses[1];
+  EXPECT_EQ(client_.responses[1]["channel"], "TIME");
+  EXPECT_TRUE(server_.session().paused());
+  const int64_t held = server_.session().simulation().state().step;
+  client_.Call(kTimeService, 2, R"({"operation": "step", "steps": 4})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(2) > 0; }));
+  ASSERT_TRUE(RunUntil([&] { return server_.session().steps_owed() == 0; }));
+  EXPECT_EQ(server_.session().simulation().state().step, held + 4);
+  client_.Call(kTimeService, 3, R"({"operation": "rewind"})");
+  ASSERT_TRUE(RunUntil([&] { return !client_.Texts("serviceCallFailure").empty(); }));
+  EXPECT_EQ(client_.Texts("serviceCallFailure").back()["message"],
+            "operation: 'rewind' is not one; allowed pause, resume, step");
+  client_.Call(kTimeService, 4, R"({"operation": "resume"})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(4) > 0; }));
+  EXPECT_FALSE(server_.session().paused());
 }
 
 TEST_F(GatewayTest, ARejectedCommandSaysWhyAndChangesNothing) {

@@ -10,6 +10,7 @@ namespace {
 TEST(RefusalPage, ABrowserIsToldWhereTheTokenIs) {
   const std::string page = RefusalHtml(401, "the token is wrong");
   EXPECT_NE(page.find("401: the token is wrong"), std::string::npos);
+  EXPECT_NE(page.find("<input name=\"token\""), std::string::npos) << "a form to give the token in";
   EXPECT_NE(page.find("?token="), std::string::npos) << "the address flagctl serve printed";
   EXPECT_NE(page.find("scripts/live.sh"), std::string::npos);
 }
