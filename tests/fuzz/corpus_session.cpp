@@ -14,6 +14,13 @@ namespace {
 constexpr double kRadiansPerDegree = M_PI / 180;
 }  // namespace
 
+time_command_t Time(int8_t operation, int32_t steps) {
+  time_command_t command{};
+  command.operation = operation;
+  command.steps = steps;
+  return command;
+}
+
 Scene SessionScene() {
   Scene scene = fuzz::SmallScene();
   scene.camera.width = 160;
@@ -111,6 +118,8 @@ void RecordSession(const std::string& log_path) {
   client.Send(channels.keyframe, KeyAdd(0, timeline_key_t::LAW_CUBIC, true));
   client.Send(channels.keyframe, KeyAdd(1, timeline_key_t::LAW_LINEAR, false));
   client.Send(channels.keyframe, Keyframe(keyframe_command_t::PLAY));
+  client.Send(channels.time, Time(time_command_t::STEP, 3));
+  client.Send(channels.time, Time(time_command_t::RESUME));
   client.Send(channels.refresh, Question());
   client.Send(channels.param, Param({{"stiffness", "bogus"}}));  // rejected: an ACK with a reason
   for (int tick = 0; tick < 60; ++tick) {  // 0.25 s more of the clock: states, frames, the timeline

@@ -12,6 +12,7 @@
 
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
+#include "flagsim/time_command_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "flagsim/wind_command_t.hpp"
@@ -41,6 +42,8 @@ keyframe_command_t Keyframe(int8_t operation);
 keyframe_command_t KeyAdd(double time, int8_t law, bool camera);
 /// A REFRESH that asks for the tables only.
 refresh_request_t Question();
+/// A TIME command: pause, resume, or `steps` steps.
+time_command_t Time(int8_t operation, int32_t steps = 0);
 
 /// Runs the session and records its bus into `log_path`.
 void RecordSession(const std::string& log_path);

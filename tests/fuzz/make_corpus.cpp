@@ -80,7 +80,8 @@ Bytes ReadFile(const fs::path& path) {
 void CommandSeeds(const std::vector<LogEvent>& events, const Channels& channels) {
   const std::map<std::string, uint8_t> selector = {{channels.wind, 0},    {channels.param, 1},
                                                    {channels.camera, 2},  {channels.keyframe, 3},
-                                                   {channels.refresh, 4}, {channels.status, 5}};
+                                                   {channels.refresh, 4}, {channels.status, 5},
+                                                   {channels.time, 6}};
   std::vector<Bytes> in_order, signed_in_order;
   std::map<std::string, int> count;
   for (const LogEvent& event : events) {

@@ -25,12 +25,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Bus bus("memq://");
   const Channels channels;
   fuzz::CommandServer server(bus, channels);
-  const std::string* const targets[] = {&channels.wind,     &channels.param,   &channels.camera,
-                                        &channels.keyframe, &channels.refresh, &channels.status};
+  const std::string* const targets[] = {&channels.wind,    &channels.param,  &channels.camera, &channels.keyframe,
+                                        &channels.refresh, &channels.status, &channels.time};
   fuzz::Records records(data, size);
   fuzz::Record record;
   while (records.Next(&record)) {
-    bus.Publish(*targets[(record.selector & 0x7f) % 6], record.data, record.size);
+    bus.Publish(*targets[(record.selector & 0x7f) % 7], record.data, record.size);
     server.HandleAll();
     if (record.selector & 0x80) server.Step();
   }

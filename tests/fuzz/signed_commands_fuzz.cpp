@@ -96,6 +96,7 @@ std::vector<uint8_t> Stamp(const Channels& channels, const std::string& channel,
   if (channel == channels.param) return Stamp<param_command_t>(channel, envelope, bytes, size);
   if (channel == channels.camera) return Stamp<camera_command_t>(channel, envelope, bytes, size);
   if (channel == channels.keyframe) return Stamp<keyframe_command_t>(channel, envelope, bytes, size);
+  if (channel == channels.time) return Stamp<time_command_t>(channel, envelope, bytes, size);
   return Stamp<refresh_request_t>(channel, envelope, bytes, size);
 }
 
@@ -107,8 +108,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Bus bus("memq://");
   const Channels channels;
   fuzz::CommandServer server(bus, channels, {Keys()[0], Keys()[1]});
-  const std::string* const targets[] = {&channels.wind, &channels.param, &channels.camera, &channels.keyframe,
-                                        &channels.refresh};
+  // The selectors of server_commands (make_corpus.cpp); its STATUS slot is a REFRESH here.
+  const std::string* const targets[] = {&channels.wind,    &channels.param,   &channels.camera, &channels.keyframe,
+                                        &channels.refresh, &channels.refresh, &channels.time};
   std::string last_channel;
   std::vector<uint8_t> last_sent;
   fuzz::Records records(data, size);
@@ -117,7 +119,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Envelope envelope;
     if (!ReadEnvelope(record, &envelope)) continue;
     if (!envelope.again || last_sent.empty()) {
-      last_channel = *targets[(record.selector & 0x7f) % 5];
+      last_channel = *targets[(record.selector & 0x7f) % 7];
       last_sent = Stamp(channels, last_channel, envelope, record.data + 5, record.size - 5);
     }
     bus.Publish(last_channel, last_sent.data(), last_sent.size());

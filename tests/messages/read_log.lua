@@ -55,8 +55,8 @@ local kCheckpointHashOffset = kFingerprintBytes + 3 * 8            -- checkpoint
 local kFrameHashOffset = kFingerprintBytes + 4 * 8 + 3 * 4 + 1 + 8  -- frame_t: utime .. request_id
 local kPixelHashOffset = kFingerprintBytes + 8 + 8 + 4 + 4 * 2 + 1  -- tile_t: utime .. encoding
 local kStatusFixedBeforeIntegrator = kFingerprintBytes + 6 * 8 + 3 * 4  -- status_t: utime .. threads
-local kStatusFixedBetweenStrings = 1 + 8 * 8 + 8 + 8 + 3 * 8 + 5 * 8 + 8
-                                         -- sleeping .. messages_dropped, commands_unsigned .. recoveries
+local kStatusFixedBetweenStrings = 1 + 1 + 4 + 8 + 8 * 8 + 8 + 8 + 3 * 8 + 5 * 8 + 8
+                        -- sleeping, paused, steps_owed, time_scale .. messages_dropped, commands_unsigned .. recoveries
 
 local printers = {
   STATE = function(data)

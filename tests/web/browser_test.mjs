@@ -172,12 +172,33 @@ async function checkKeyboardReset(page) {
   check("r puts the camera back where the scene has it", Boolean(reset), reset);
 }
 
+/** The share of the picture that is the flag's cloth (its blue and yellow; the sky's blue is
+ *  lighter, the ground green, the pole grey), and the centre of those pixels in image px. */
+function flagInPicture(page) {
+  return page.evaluate(() => {
+    const rgb = window.flagsim.imageRGB();
+    const { width, height } = window.flagsim.frame;
+    let count = 0, sx = 0, sy = 0;
+    for (let i = 0, p = 0; i < rgb.length; i += 3, p += 1) {
+      const [r, g, b] = [rgb[i], rgb[i + 1], rgb[i + 2]];
+      const yellow = r > 150 && g > 110 && b < 90;
+      const blue = b > 70 && r < 45 && g < 120;
+      if (!yellow && !blue) continue;
+      count += 1;
+      sx += p % width;
+      sy += Math.floor(p / width);
+    }
+    return { share: count / (width * height), x: sx / Math.max(count, 1), y: sy / Math.max(count, 1), width, height };
+  });
+}
+
 async function checkZoomAndFrame(page) {
   section("zoom at the cursor, frame the flag");
   const span = (camera) => Math.hypot(...camera.eye.map((value, k) => value - camera.target[k]));
   const before = await hooks(page, () => window.flagsim.camera);
+  const flag = await flagInPicture(page);
   const box = await page.locator("#picture").boundingBox();
-  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.move(box.x + (flag.x / flag.width) * box.width, box.y + (flag.y / flag.height) * box.height);
   for (let notch = 0; notch < 30; notch += 1) {
     await page.mouse.wheel(0, -100);
     await page.waitForTimeout(20);
@@ -191,6 +212,12 @@ async function checkZoomAndFrame(page) {
   const after = await hooks(page, () => ({ camera: window.flagsim.camera, ack: window.flagsim.lastAck }));
   check("30 wheel clicks over the flag zoom in toward it, accepted", after.ack.accepted && span(after.camera) < span(before),
         { before: span(before), after: span(after.camera), ack: after.ack, first: zoomed.ack });
+  const frameId = await hooks(page, () => window.flagsim.frame.id);
+  await hooks(page, (id) => window.flagsim.waitForFrame((frame) => frame.id > id + 2 && frame.hashOk, 5000), frameId);
+  const close = await flagInPicture(page);
+  check(`  and stop short of it: the cloth fills the picture (${(100 * close.share).toFixed(0)} % of it, ` +
+        `${(100 * flag.share).toFixed(0)} % before), not sky and ground`, close.share > 0.3 && close.share > 3 * flag.share,
+        { before: flag.share, after: close.share });
   await page.locator("#stage").focus();
   await page.keyboard.press("f");
   const framed = await waitFor(() => hooks(page, (near) => {
@@ -233,8 +260,16 @@ async function checkTimeline(page) {
   await page.locator("#timeline-body button.play").click();
   await waitFor(() => hooks(page, () => window.flagsim.timeline?.playing === false), 10, "TIMELINE paused");
   check("  and Pause pauses it", true);
-  await flagctlRun("keyframe", "seek", "3600");
-  await waitFor(() => hooks(page, () => window.flagsim.timeline?.position === 3600), 10, "TIMELINE at its end");
+  // Scrubbing while paused: a click on the bar past the last key seeks there, and the wind follows
+  // the keys at once (the last key's: 5, 0, 1 m/s), though the timeline does not play.
+  const bar = await page.locator("#timeline-body .timeline-bar").boundingBox();
+  await page.mouse.click(bar.x + bar.width * 0.9, bar.y + bar.height / 2);
+  await waitFor(() => hooks(page, () => window.flagsim.timeline?.position >= 3600), 10, "TIMELINE past its last key");
+  const previewed = await waitFor(() => hooks(page, () => {
+    const wind = window.flagsim.state?.wind;
+    return wind && Math.abs(wind.x - 5) < 1e-6 && Math.abs(wind.y) < 1e-6 && Math.abs(wind.z - 1) < 1e-6 && wind;
+  }), 10, "the wind of the last key in STATE");
+  check("scrubbing while paused previews what the keys set there (the wind follows)", Boolean(previewed), previewed);
   await page.locator("#timeline-body button.play").click();
   const again = await waitFor(() => hooks(page, () => {
     const timeline = window.flagsim.timeline;
