@@ -44,8 +44,8 @@
 
 #include "bench/bullet_flag.hpp"
 #include "bench/bullet_work_precision.hpp"
-#include "server/lab/cpu_time.hpp"
-#include "server/lab/trajectory.hpp"
+#include "lab/cpu_time.hpp"
+#include "lab/trajectory.hpp"
 #include "server/scene/scene_file.hpp"
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/integrator.hpp"

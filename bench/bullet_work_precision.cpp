@@ -21,7 +21,7 @@
 #include "bench/lab/lab_setup.hpp"
 #include "bench/lab/table.hpp"
 #include "bench/lab/work_precision_scene.hpp"
-#include "server/lab/screen_error.hpp"
+#include "lab/screen_error.hpp"
 
 namespace flagsim {
 namespace {

@@ -37,8 +37,8 @@
 #include <vector>
 
 #include "bench/lab/table.hpp"
-#include "server/lab/cpu_time.hpp"
-#include "server/lab/triangle_crossings.hpp"
+#include "lab/cpu_time.hpp"
+#include "lab/triangle_crossings.hpp"
 #include "server/scene/parameter_table.hpp"
 #include "server/scene/scene_file.hpp"
 #include "server/sim/cloth_mesh.hpp"

@@ -35,7 +35,7 @@
 #include "bench/flag_pose.hpp"
 #include "bench/gl_scene.hpp"
 #include "bench/measure.hpp"
-#include "client/png_file.hpp"
+#include "common/png_file.hpp"
 #include "server/render/renderer.hpp"
 
 namespace flagsim {

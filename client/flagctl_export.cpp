@@ -14,12 +14,12 @@
 #include <string>
 #include <utility>
 
-#include "client/cli_checks.hpp"
+#include "common/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
 #include "client/frame_output.hpp"
 #include "client/gateway/mcap_export.hpp"
 #include "client/log_frames.hpp"
-#include "client/progress_bar.hpp"
+#include "common/progress_bar.hpp"
 #include "messages/event_log_reader.hpp"
 
 namespace flagsim {

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "client/cli_checks.hpp"
+#include "common/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
 
 namespace {

@@ -6,12 +6,12 @@
 #include <memory>
 #include <optional>
 
-#include "client/cli_checks.hpp"
+#include "common/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
 #include "client/flagctl_link.hpp"
 #include "client/frame_output.hpp"
 #include "client/log_recorder.hpp"
-#include "client/picture_file.hpp"
+#include "common/picture_file.hpp"
 #include "client/printing.hpp"
 #include "client/tile_assembler.hpp"
 #include "flagsim/frame_t.hpp"

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "client/png_file.hpp"
+#include "common/png_file.hpp"
 #include "client/video_output.hpp"
 
 namespace flagsim {

@@ -8,7 +8,7 @@
 #include "bench/lab/experiments.hpp"
 #include "bench/lab/lab_setup.hpp"
 #include "bench/lab/table.hpp"
-#include "server/lab/screen_error.hpp"
+#include "lab/screen_error.hpp"
 #include "server/scene/scene_file.hpp"
 
 namespace flagsim::lab {

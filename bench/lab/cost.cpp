@@ -9,7 +9,7 @@
 #include "bench/lab/experiments.hpp"
 #include "bench/lab/lab_setup.hpp"
 #include "bench/lab/table.hpp"
-#include "server/lab/cpu_time.hpp"
+#include "lab/cpu_time.hpp"
 #include "server/scene/scene_file.hpp"
 #include "server/sim/simulation.hpp"
 

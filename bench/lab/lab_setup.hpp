@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "server/lab/trajectory.hpp"
+#include "lab/trajectory.hpp"
 #include "server/sim/cloth_state.hpp"
 #include "server/sim/integrator.hpp"
 

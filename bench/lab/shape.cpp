@@ -1,6 +1,6 @@
 // The cloth under grid refinement: a preset scene at several grids, each run through the server's
 // own simulation (float, automatic substeps, self-collision) past a warm-up, sampled at 50 Hz,
-// reduced to shape statistics with 95% confidence intervals (server/lab/shape_statistics.hpp).
+// reduced to shape statistics with 95% confidence intervals (lab/shape_statistics.hpp).
 // A cloth whose model converges keeps them at every grid; one whose folds are set by the grid
 // spacing shows its curvature growing and its fold spacing shrinking as the grid refines.
 #include <cmath>
@@ -9,8 +9,8 @@
 
 #include "bench/lab/experiments.hpp"
 #include "bench/lab/table.hpp"
-#include "server/lab/cpu_time.hpp"
-#include "server/lab/shape_statistics.hpp"
+#include "lab/cpu_time.hpp"
+#include "lab/shape_statistics.hpp"
 #include "server/scene/parameter_table.hpp"
 #include "server/scene/scene_file.hpp"
 #include "server/sim/simulation.hpp"

@@ -20,7 +20,7 @@
 #include "bench/lab/experiments.hpp"
 #include "bench/lab/lab_setup.hpp"
 #include "bench/lab/table.hpp"
-#include "server/lab/stability.hpp"
+#include "lab/stability.hpp"
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/forces.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "bench/lab/experiments.hpp"
 #include "bench/lab/table.hpp"
-#include "server/lab/cpu_time.hpp"
+#include "lab/cpu_time.hpp"
 #include "server/model/frame_defect.hpp"
 #include "server/model/resolution_error.hpp"
 #include "server/scene/scene_file.hpp"

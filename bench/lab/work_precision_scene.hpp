@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "server/lab/trajectory.hpp"
+#include "lab/trajectory.hpp"
 #include "server/render/camera.hpp"
 #include "server/sim/cloth_state.hpp"
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "client/gateway/bus_json.hpp"
-#include "client/jpeg_file.hpp"
+#include "common/jpeg_file.hpp"
 
 namespace flagsim::gateway {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "client/png_file.hpp"
+#include "common/png_file.hpp"
 #include "client/video_output.hpp"
 
 namespace flagsim {

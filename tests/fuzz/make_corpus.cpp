@@ -26,7 +26,7 @@
 
 #include "client/gateway/foxglove_wire.hpp"
 #include "client/gateway/gateway_catalog.hpp"
-#include "client/png_file.hpp"
+#include "common/png_file.hpp"
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
 #include "flagsim/param_command_t.hpp"

@@ -1,9 +1,9 @@
-// Fuzz target: the PNG reader (client/png_file.hpp ReadPng). The input is the file.
+// Fuzz target: the PNG reader (common/png_file.hpp ReadPng). The input is the file.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include "client/png_file.hpp"
+#include "common/png_file.hpp"
 #include "tests/fuzz/scratch_file.hpp"
 
 using namespace flagsim;

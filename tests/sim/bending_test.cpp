@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "server/lab/shape_statistics.hpp"
+#include "lab/shape_statistics.hpp"
 #include "server/sim/forces.hpp"
 #include "server/sim/simulation.hpp"
 #include "tests/sim/sim_test_util.hpp"

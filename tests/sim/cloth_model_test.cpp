@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "server/lab/stability.hpp"
+#include "lab/stability.hpp"
 
 namespace flagsim::sim {
 namespace {

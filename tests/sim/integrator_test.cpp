@@ -9,7 +9,7 @@
 #include <map>
 #include <vector>
 
-#include "server/lab/trajectory.hpp"
+#include "lab/trajectory.hpp"
 #include "server/sim/simulation.hpp"
 #include "tests/sim/sim_test_util.hpp"
 

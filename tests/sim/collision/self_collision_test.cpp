@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "server/lab/triangle_crossings.hpp"
+#include "lab/triangle_crossings.hpp"
 #include "server/scene/scene_file.hpp"
 #include "server/sim/simulation.hpp"
 

@@ -1,11 +1,11 @@
-#include "client/picture_file.hpp"
+#include "common/picture_file.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 
-#include "client/jpeg_file.hpp"
-#include "client/png_file.hpp"
+#include "common/jpeg_file.hpp"
+#include "common/png_file.hpp"
 
 namespace flagsim {
 

@@ -1,4 +1,4 @@
-#include "client/png_file.hpp"
+#include "common/png_file.hpp"
 
 #include <png.h>
 

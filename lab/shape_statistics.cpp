@@ -1,4 +1,4 @@
-#include "server/lab/shape_statistics.hpp"
+#include "lab/shape_statistics.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "server/lab/trajectory.hpp"
+#include "lab/trajectory.hpp"
 #include "server/sim/sim_params.hpp"
 
 namespace flagsim::lab {

@@ -1,4 +1,4 @@
-#include "server/lab/stability.hpp"
+#include "lab/stability.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "client/progress_bar.hpp"
+#include "common/progress_bar.hpp"
 
 #include <unistd.h>
 

@@ -1,10 +1,10 @@
-#include "server/lab/trajectory.hpp"
+#include "lab/trajectory.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "server/lab/cpu_time.hpp"
+#include "lab/cpu_time.hpp"
 #include "server/sim/cloth_model.hpp"
 #include "server/sim/forces.hpp"
 #include "server/sim/integrator.hpp"

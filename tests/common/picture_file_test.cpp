@@ -1,4 +1,4 @@
-#include "client/picture_file.hpp"
+#include "common/picture_file.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "client/png_file.hpp"
+#include "common/png_file.hpp"
 
 namespace flagsim {
 namespace {

@@ -1,4 +1,4 @@
-#include "server/lab/screen_error.hpp"
+#include "lab/screen_error.hpp"
 
 #include <algorithm>
 #include <cmath>

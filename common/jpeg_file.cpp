@@ -1,4 +1,4 @@
-#include "client/jpeg_file.hpp"
+#include "common/jpeg_file.hpp"
 
 #include <jpeglib.h>
 
