@@ -4,6 +4,8 @@
 #include <cmath>
 
 namespace flagsim::render {
+
+constexpr int kPatternWidth = 960, kPatternHeight = 640;  ///< texels of the built-in designs
 namespace {
 
 void BuildGridTopology(int cols, int rows, Mesh* mesh) {
@@ -145,7 +147,9 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
   ground.front_material = 4;
   scene.meshes = {flag, pole, finial, ground};
 
-  scene.pattern = MakePattern(design, 240, 160);
+  // Fine enough that a flag filling a 1920 x 1080 picture is still minified or near it: the
+  // filtered pattern's edges stay sharp up close (texture_filter.hpp).
+  scene.pattern = MakePattern(design, kPatternWidth, kPatternHeight);
   Light sun;
   sun.kind = Light::kDirectional;
   sun.vector = Eigen::Vector3f(0.4f, 0.8f, 0.6f).normalized();

@@ -1,4 +1,5 @@
-// The flag's pattern: a small RGB8 texture made from a design, sampled at the nearest texel.
+// The flag's pattern: an RGB8 texture made from a design. The tiles sample it filtered
+// (texture_filter.hpp); Sample here picks the nearest texel (a wireframe line's colour).
 // (u, v) in [0, 1]^2: u runs along the flag from the hoist, v down from the top edge.
 #pragma once
 

@@ -56,6 +56,15 @@ void ShadeFace(const RenderScene& scene, const Mesh& mesh, const Eigen::Vector3f
   }
 }
 
+/// The triangle's area in (u, v) over its area in pixels (u, v: channels 6 and 7), for the
+/// pattern's level of detail; 0 for a triangle of no area on screen.
+float UvAreaPerPixel(const ScreenVertex s[3]) {
+  const float screen = std::abs((s[1].x - s[0].x) * (s[2].y - s[0].y) - (s[2].x - s[0].x) * (s[1].y - s[0].y));
+  const float uv = std::abs((s[1].channels[6] - s[0].channels[6]) * (s[2].channels[7] - s[0].channels[7]) -
+                            (s[2].channels[6] - s[0].channels[6]) * (s[1].channels[7] - s[0].channels[7]));
+  return screen > 0 ? uv / screen : 0;
+}
+
 /// Clipped, projected, set up: appends what is visible of one triangle to `out`.
 void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, int width,
                   int height, std::vector<TriangleSetup>* out) {
@@ -68,6 +77,7 @@ void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, co
   TriangleSetup setup;
   if (!SetupTriangle(s[0], s[1], s[2], width, height, &setup)) return;
   setup.material = back ? mesh.back_material : mesh.front_material;
+  setup.uv_area_per_pixel = UvAreaPerPixel(s);
   out->push_back(setup);
 }
 

@@ -77,7 +77,7 @@ class Renderer {
   std::vector<Chunk> chunks_;                      ///< the batch's
   size_t triangles_drawn_ = 0;
   std::vector<LineSetup> lines_;
-  RgbxTexture pattern_;             ///< the scene's, for the tiles
+  FilteredTexture pattern_;         ///< the scene's, filtered, for the tiles
   std::vector<uint32_t> sky_rows_;  ///< the sky's colour on each row of the image
   int tiles_x_ = 0, tiles_y_ = 0;
   std::vector<std::vector<uint32_t>> line_bins_;  ///< per tile: indices into lines_

@@ -48,19 +48,20 @@ struct Planes {
 };
 
 /// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
-/// base the material's colour, times the pattern's texel at (u, v) (channels 6, 7) when
-/// `kPatterned`. Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block
+/// base the material's colour, times the pattern filtered at (u, v) (channels 6, 7) and the
+/// triangle's level of detail when `kPatterned` (texture_filter.hpp). Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block
 /// of kSpanLanes pixels at once.
 template <bool kPatterned>
 class BlockShader {
  public:
   static constexpr int kChannels = kPatterned ? 8 : 6;
 
-  /// `pattern` is read only when kPatterned.
-  BlockShader(const Planes& planes, const Material& material, const RgbxTexture* pattern)
+  /// `pattern` is read only when kPatterned, at level of detail `lod`.
+  BlockShader(const Planes& planes, const Material& material, const FilteredTexture* pattern, float lod = 0)
       : planes_(planes),
         base_{material.colour[0], material.colour[1], material.colour[2]},
-        pattern_(pattern) {}
+        pattern_(pattern),
+        lod_(lod) {}
 
   /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
   /// in that column. One loop over the lanes, so that each step's values stay in vector
@@ -78,9 +79,10 @@ class BlockShader {
       }
       float base[3] = {base_[0], base_[1], base_[2]};
       if constexpr (kPatterned) {
-        const uint32_t texel = pattern_->texels[TexelIndex(c[6], c[7])];
+        float texel[3];
+        pattern_->Sample(c[6], c[7], lod_, texel);
 #pragma GCC unroll 3
-        for (int j = 0; j < 3; ++j) base[j] *= float(texel >> 8 * j & 0xff) * (1.0f / 255);
+        for (int j = 0; j < 3; ++j) base[j] *= texel[j];
       }
       colour[i] = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
                            ToByte(base[2] * c[2] + c[5]));
@@ -88,18 +90,10 @@ class BlockShader {
   }
 
  private:
-  /// The texel at (u, v), picked as Texture::Sample does.
-  int32_t TexelIndex(float u, float v) const {
-    const int width = pattern_->width, height = pattern_->height;
-    int x = static_cast<int>(u * width), y = static_cast<int>(v * height);
-    x = x < 0 ? 0 : x >= width ? width - 1 : x;
-    y = y < 0 ? 0 : y >= height ? height - 1 : y;
-    return y * width + x;
-  }
-
   const Planes& planes_;
   float base_[3];
-  const RgbxTexture* pattern_;
+  const FilteredTexture* pattern_;
+  float lod_;
 };
 
 /// The n pixels of a row from fx0 pixels past the box's first column, kSpanLanes at a time:
@@ -258,8 +252,9 @@ void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, const Pl
         ShadePoint(material, scene.lighting, Eigen::Vector3f(c[0], c[1], c[2]), normal, context.eye);
     Eigen::Vector3f base = material.colour;
     if (material.patterned) {
-      const uint8_t* texel = scene.pattern.Sample(c[6], c[7]);
-      base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) * (1.0f / 255));
+      float texel[3];
+      context.pattern->Sample(c[6], c[7], context.pattern->LevelOfDetail(t.uv_area_per_pixel), texel);
+      base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]));
     }
     const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
     rgbx[i] = PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
@@ -308,17 +303,6 @@ TileTarget TileBuffer::Target(const TileRect& rect) {
   target.depth = depth_.data();
   target.stride = stride_;
   return target;
-}
-
-void RgbxTexture::Assign(const Texture& texture) {
-  if (texture.width == width && texture.height == height && texture.rgb == source) return;
-  source = texture.rgb;
-  width = texture.width;
-  height = texture.height;
-  texels.resize(size_t(width) * height);
-  for (size_t i = 0; i < texels.size(); ++i) {
-    texels[i] = PackRgbx(texture.rgb[3 * i], texture.rgb[3 * i + 1], texture.rgb[3 * i + 2]);
-  }
 }
 
 void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer) {
@@ -417,7 +401,7 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
       FillSpanPhong(t, context, planes, at, fx0, n, depth, rgbx);
     });
   } else if (material.patterned) {
-    fill(BlockShader<true>(planes, material, context.pattern));
+    fill(BlockShader<true>(planes, material, context.pattern, context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
   } else {
     fill(BlockShader<false>(planes, material, context.pattern));
   }

@@ -10,6 +10,7 @@
 #include "server/render/framebuffer.hpp"
 #include "server/render/mesh.hpp"
 #include "server/render/shading_mode.hpp"
+#include "server/render/texture_filter.hpp"
 #include "server/render/triangle_setup.hpp"
 
 namespace flagsim::render {
@@ -63,19 +64,10 @@ void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer
 void CopyIn(const Framebuffer& framebuffer, const TileTarget& target);
 
 /// A pattern as RGBX words (PackRgbx), so that fetching a texel is one load.
-struct RgbxTexture {
-  int width = 0, height = 0;
-  std::vector<uint32_t> texels;  ///< row-major, top row first, as Texture::rgb
-  std::vector<uint8_t> source;   ///< the RGB bytes they are from
-
-  /// The texels of `texture`; nothing to do if they are from the same bytes already.
-  void Assign(const Texture& texture);
-};
-
 /// What the per-pixel shading reads besides the triangle.
 struct ShadeContext {
   const RenderScene* scene = nullptr;
-  const RgbxTexture* pattern = nullptr;  ///< scene->pattern as RGBX, for patterned materials
+  const FilteredTexture* pattern = nullptr;  ///< scene->pattern, filtered, for patterned materials
   ShadingMode mode = ShadingMode::kGouraud;
   Eigen::Vector3f eye = Eigen::Vector3f::Zero();  ///< world frame, for per-pixel lighting
 };

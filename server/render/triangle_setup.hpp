@@ -44,6 +44,7 @@ struct TriangleSetup {
   bool back_facing = false;        ///< the vertices run clockwise as seen (after the y flip: counter)
   bool narrow = false;             ///< small enough for LaneSpans in any window
   int material = 0;                ///< index into the scene's materials
+  float uv_area_per_pixel = 0;     ///< (u, v) area per px² of the image: the pattern's level of detail
 };
 
 /// Snaps and sets up the triangle; false if it covers no pixel centre of a width x height

@@ -1,0 +1,92 @@
+#include "server/render/texture_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace flagsim::render {
+namespace {
+
+uint32_t Pack(uint32_t r, uint32_t g, uint32_t b) { return r | g << 8 | b << 16; }
+uint32_t Channel(uint32_t texel, int k) { return texel >> (8 * k) & 0xff; }
+
+/// Level k + 1 from level k: each texel the rounded mean of a 2 x 2 block.
+FilteredTexture::Level HalfOf(const FilteredTexture::Level& level) {
+  FilteredTexture::Level half;
+  half.width = std::max(1, level.width / 2);
+  half.height = std::max(1, level.height / 2);
+  half.texels.resize(size_t(half.width) * half.height);
+  const auto at = [&level](int x, int y) {
+    return level.texels[size_t(std::min(y, level.height - 1)) * level.width + std::min(x, level.width - 1)];
+  };
+  for (int y = 0; y < half.height; ++y) {
+    for (int x = 0; x < half.width; ++x) {
+      const uint32_t block[4] = {at(2 * x, 2 * y), at(2 * x + 1, 2 * y), at(2 * x, 2 * y + 1), at(2 * x + 1, 2 * y + 1)};
+      uint32_t mean[3];
+      for (int k = 0; k < 3; ++k) {
+        mean[k] = (Channel(block[0], k) + Channel(block[1], k) + Channel(block[2], k) + Channel(block[3], k) + 2) / 4;
+      }
+      half.texels[size_t(y) * half.width + x] = Pack(mean[0], mean[1], mean[2]);
+    }
+  }
+  return half;
+}
+
+}  // namespace
+
+void FilteredTexture::Assign(const Texture& texture) {
+  if (texture.width == source_width_ && texture.height == source_height_ && texture.rgb == source_) return;
+  source_ = texture.rgb;
+  source_width_ = texture.width;
+  source_height_ = texture.height;
+  levels_.clear();
+  if (texture.width <= 0 || texture.height <= 0) return;
+  Level base;
+  base.width = texture.width;
+  base.height = texture.height;
+  base.texels.resize(size_t(base.width) * base.height);
+  for (size_t i = 0; i < base.texels.size(); ++i) {
+    base.texels[i] = Pack(texture.rgb[3 * i], texture.rgb[3 * i + 1], texture.rgb[3 * i + 2]);
+  }
+  levels_.push_back(std::move(base));
+  while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(HalfOf(levels_.back()));
+}
+
+float FilteredTexture::LevelOfDetail(float uv_area_per_pixel) const {
+  if (levels_.empty()) return 0;
+  const float texels_per_pixel = uv_area_per_pixel * float(levels_[0].width) * float(levels_[0].height);
+  if (!(texels_per_pixel > 1)) return 0;  // magnified (or degenerate): the full-size level
+  return std::min(0.5f * std::log2(texels_per_pixel), float(levels_.size() - 1));
+}
+
+void SampleBilinear(const FilteredTexture::Level& level, float u, float v, float rgb[3]) {
+  const float x = u * float(level.width) - 0.5f, y = v * float(level.height) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float tx = x - fx, ty = y - fy;
+  const int x0 = std::clamp(int(fx), 0, level.width - 1), x1 = std::clamp(int(fx) + 1, 0, level.width - 1);
+  const int y0 = std::clamp(int(fy), 0, level.height - 1), y1 = std::clamp(int(fy) + 1, 0, level.height - 1);
+  const uint32_t* row0 = &level.texels[size_t(y0) * level.width];
+  const uint32_t* row1 = &level.texels[size_t(y1) * level.width];
+  for (int k = 0; k < 3; ++k) {
+    const float top = float(Channel(row0[x0], k)) + (float(Channel(row0[x1], k)) - float(Channel(row0[x0], k))) * tx;
+    const float bottom = float(Channel(row1[x0], k)) + (float(Channel(row1[x1], k)) - float(Channel(row1[x0], k))) * tx;
+    rgb[k] = top + (bottom - top) * ty;
+  }
+}
+
+void FilteredTexture::Sample(float u, float v, float lod, float rgb[3]) const {
+  if (levels_.empty()) {
+    rgb[0] = rgb[1] = rgb[2] = 1;
+    return;
+  }
+  const int level = std::min(int(lod), int(levels_.size()) - 1);
+  const float blend = lod - float(level);
+  SampleBilinear(levels_[size_t(level)], u, v, rgb);
+  if (blend > 0 && level + 1 < int(levels_.size())) {
+    float next[3];
+    SampleBilinear(levels_[size_t(level) + 1], u, v, next);
+    for (int k = 0; k < 3; ++k) rgb[k] += (next[k] - rgb[k]) * blend;
+  }
+  for (int k = 0; k < 3; ++k) rgb[k] *= 1.0f / 255;
+}
+
+}  // namespace flagsim::render

@@ -1,0 +1,92 @@
+// The pattern's filtering, on patterns whose right answer is known: a plain texture stays plain
+// at every level, bilinear weights are exact between two texel centres and exact at each centre,
+// a level is the mean of the one above, the level of detail follows texels per pixel, and a
+// level of detail between two levels blends them linearly.
+#include "server/render/texture_filter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+
+namespace flagsim::render {
+namespace {
+
+Texture Filled(int width, int height, const std::function<std::array<uint8_t, 3>(int, int)>& texel) {
+  Texture texture;
+  texture.width = width;
+  texture.height = height;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      for (const uint8_t channel : texel(x, y)) texture.rgb.push_back(channel);
+    }
+  }
+  return texture;
+}
+
+TEST(TextureFilter, APlainTextureIsPlainAtEveryLevelAndPlace) {
+  FilteredTexture filtered;
+  filtered.Assign(Filled(12, 7, [](int, int) { return std::array<uint8_t, 3>{51, 102, 204}; }));
+  ASSERT_EQ(filtered.levels().size(), 4u);  // 12 x 7, 6 x 3, 3 x 1, 1 x 1
+  EXPECT_EQ(filtered.levels().back().width, 1);
+  for (const float lod : {0.0f, 0.3f, 1.0f, 2.7f, 3.0f}) {
+    for (const float u : {-0.5f, 0.0f, 0.37f, 1.0f, 1.5f}) {
+      float rgb[3];
+      filtered.Sample(u, 0.61f, lod, rgb);
+      EXPECT_FLOAT_EQ(rgb[0], 51 / 255.0f);
+      EXPECT_FLOAT_EQ(rgb[1], 102 / 255.0f);
+      EXPECT_FLOAT_EQ(rgb[2], 204 / 255.0f);
+    }
+  }
+}
+
+TEST(TextureFilter, BilinearIsExactAtTexelCentresAndLinearBetween) {
+  FilteredTexture filtered;  // black | white, one row
+  filtered.Assign(Filled(2, 1, [](int x, int) { return std::array<uint8_t, 3>{uint8_t(255 * x), 0, 0}; }));
+  float rgb[3];
+  filtered.Sample(0.25f, 0.5f, 0, rgb);  // the first texel's centre
+  EXPECT_FLOAT_EQ(rgb[0], 0);
+  filtered.Sample(0.75f, 0.5f, 0, rgb);
+  EXPECT_FLOAT_EQ(rgb[0], 1);
+  for (const float t : {0.1f, 0.5f, 0.8f}) {  // between the centres: linear in u
+    filtered.Sample(0.25f + 0.5f * t, 0.5f, 0, rgb);
+    EXPECT_NEAR(rgb[0], t, 1e-6);
+  }
+  filtered.Sample(0.05f, 0.5f, 0, rgb);  // past the last centre: clamped to the edge texel
+  EXPECT_FLOAT_EQ(rgb[0], 0);
+}
+
+TEST(TextureFilter, EachLevelIsTheMeanOfTheOneAbove) {
+  FilteredTexture filtered;  // a 4 x 4 checker of 0 and 200
+  filtered.Assign(Filled(4, 4, [](int x, int y) { return std::array<uint8_t, 3>{uint8_t((x + y) % 2 ? 200 : 0), 0, 0}; }));
+  ASSERT_EQ(filtered.levels().size(), 3u);
+  for (const uint32_t texel : filtered.levels()[1].texels) EXPECT_EQ(texel & 0xff, 100u);
+  EXPECT_EQ(filtered.levels()[2].texels[0] & 0xff, 100u);
+  float rgb[3];
+  filtered.Sample(0.3f, 0.8f, 1, rgb);
+  EXPECT_FLOAT_EQ(rgb[0], 100 / 255.0f);
+}
+
+TEST(TextureFilter, TheLevelOfDetailFollowsTexelsPerPixel) {
+  FilteredTexture filtered;
+  filtered.Assign(Filled(64, 32, [](int, int) { return std::array<uint8_t, 3>{0, 0, 0}; }));
+  const float texel_area = 1.0f / (64 * 32);  // (u, v) area of one texel
+  EXPECT_EQ(filtered.LevelOfDetail(texel_area / 9), 0);  // magnified: the full-size level
+  EXPECT_NEAR(filtered.LevelOfDetail(texel_area), 0, 1e-6);
+  EXPECT_NEAR(filtered.LevelOfDetail(4 * texel_area), 1, 1e-6);  // 2 texels per pixel along each side
+  EXPECT_NEAR(filtered.LevelOfDetail(16 * texel_area), 2, 1e-6);
+  EXPECT_EQ(filtered.LevelOfDetail(1e6f), float(filtered.levels().size() - 1));  // the 1 x 1 level at most
+  EXPECT_EQ(filtered.LevelOfDetail(0), 0);
+}
+
+TEST(TextureFilter, BetweenTwoLevelsTheyBlendLinearly) {
+  FilteredTexture filtered;  // level 0: 0 | 200; level 1: 100
+  filtered.Assign(Filled(2, 1, [](int x, int) { return std::array<uint8_t, 3>{uint8_t(200 * x), 0, 0}; }));
+  float rgb[3];
+  filtered.Sample(0.25f, 0.5f, 0.25f, rgb);  // 0 at level 0, 100 at level 1
+  EXPECT_NEAR(rgb[0] * 255, 25, 1e-4);
+}
+
+}  // namespace
+}  // namespace flagsim::render
