@@ -27,14 +27,23 @@ FrameInput FrameInput::Of(const Session& session, int64_t utime) {
   return input;
 }
 
-// copied state => flag mesh => frame
+// copied state => smooth surface, refined for the picture (the grid itself in wireframe) =>
+// flag mesh => frame
 const render::Framebuffer& FramePainter::Paint(const FrameInput& input, int threads) {
   if (input.pole_height != pole_height_ || input.pole_radius != pole_radius_) {
     scene_ = render::DefaultRenderScene(float(input.pole_height), float(input.pole_radius));
     pole_height_ = input.pole_height;
     pole_radius_ = input.pole_radius;
   }
-  render::UpdateFlagMesh(input.cols, input.rows, input.x.data(), input.y.data(), input.z.data(),
+  grid_.cols = input.cols;
+  grid_.rows = input.rows;
+  grid_.x = input.x;
+  grid_.y = input.y;
+  grid_.z = input.z;
+  const bool wireframe = input.shading == render::ShadingMode::kWireframe;
+  const int factor = wireframe ? 1 : render::RefinementFor(grid_, input.camera);
+  render::RefineGrid(grid_, factor, float(input.pole_radius), &surface_);
+  render::UpdateFlagMesh(surface_.cols, surface_.rows, surface_.x.data(), surface_.y.data(), surface_.z.data(),
                          &scene_.meshes[0]);
   render::RenderOptions options;
   options.mode = input.shading;

@@ -3,7 +3,8 @@
 //   FrameInput::Of(session)   at a step boundary, on the loop's thread: copies what the picture
 //                             needs (the flag's node positions, the camera, the shading, the pole,
 //                             what the manifest says); the session steps on at once
-//   FramePainter::Paint       anywhere later: the flag's mesh from the copy, drawn
+//   FramePainter::Paint       anywhere later: the flag's mesh from the copy (the smooth surface
+//                             through its nodes, refined for the picture: smooth_surface.hpp), drawn
 //
 // The painter owns the render scene (pole, ground, lights) and the renderer's buffers, so nothing
 // that only steps or replays a session (flagd replay, the lab) builds them.
@@ -15,6 +16,7 @@
 #include "server/render/framebuffer.hpp"
 #include "server/render/renderer.hpp"
 #include "server/render/shading_mode.hpp"
+#include "server/render/smooth_surface.hpp"
 #include "server/service/session.hpp"
 #include "server/service/tile_stream.hpp"
 
@@ -41,6 +43,8 @@ class FramePainter {
   const render::Framebuffer& frame() const { return framebuffer_; }
 
  private:
+  render::NodeGrid grid_;     ///< the simulated nodes
+  render::NodeGrid surface_;  ///< the smooth surface through them, refined for the picture
   render::RenderScene scene_;
   double pole_height_ = -1, pole_radius_ = -1;  ///< m, what scene_ was built for
   render::Renderer renderer_;
