@@ -58,35 +58,4 @@ float FilteredTexture::LevelOfDetail(float uv_area_per_pixel) const {
   return std::min(0.5f * std::log2(texels_per_pixel), float(levels_.size() - 1));
 }
 
-void SampleBilinear(const FilteredTexture::Level& level, float u, float v, float rgb[3]) {
-  const float x = u * float(level.width) - 0.5f, y = v * float(level.height) - 0.5f;
-  const float fx = std::floor(x), fy = std::floor(y);
-  const float tx = x - fx, ty = y - fy;
-  const int x0 = std::clamp(int(fx), 0, level.width - 1), x1 = std::clamp(int(fx) + 1, 0, level.width - 1);
-  const int y0 = std::clamp(int(fy), 0, level.height - 1), y1 = std::clamp(int(fy) + 1, 0, level.height - 1);
-  const uint32_t* row0 = &level.texels[size_t(y0) * level.width];
-  const uint32_t* row1 = &level.texels[size_t(y1) * level.width];
-  for (int k = 0; k < 3; ++k) {
-    const float top = float(Channel(row0[x0], k)) + (float(Channel(row0[x1], k)) - float(Channel(row0[x0], k))) * tx;
-    const float bottom = float(Channel(row1[x0], k)) + (float(Channel(row1[x1], k)) - float(Channel(row1[x0], k))) * tx;
-    rgb[k] = top + (bottom - top) * ty;
-  }
-}
-
-void FilteredTexture::Sample(float u, float v, float lod, float rgb[3]) const {
-  if (levels_.empty()) {
-    rgb[0] = rgb[1] = rgb[2] = 1;
-    return;
-  }
-  const int level = std::min(int(lod), int(levels_.size()) - 1);
-  const float blend = lod - float(level);
-  SampleBilinear(levels_[size_t(level)], u, v, rgb);
-  if (blend > 0 && level + 1 < int(levels_.size())) {
-    float next[3];
-    SampleBilinear(levels_[size_t(level) + 1], u, v, next);
-    for (int k = 0; k < 3; ++k) rgb[k] += (next[k] - rgb[k]) * blend;
-  }
-  for (int k = 0; k < 3; ++k) rgb[k] *= 1.0f / 255;
-}
-
 }  // namespace flagsim::render

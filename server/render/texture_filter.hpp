@@ -11,6 +11,8 @@
 // Texels are RGBX words (bytes R, G, B, 0), as the tiles store pixels.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -32,7 +34,21 @@ class FilteredTexture {
   /// texel covers a pixel or more (magnified), up to the last level.
   float LevelOfDetail(float uv_area_per_pixel) const;
 
-  /// The filtered colour at (u, v) and level of detail `lod` (LevelOfDetail's), each channel 0..1.
+  /// The two levels around level of detail `lod` (LevelOfDetail's) and how far it is from the
+  /// first to the second: what every pixel of one triangle samples.
+  struct Sampler {
+    const Level* first = nullptr;
+    const Level* second = nullptr;  ///< the same level where there is no next one
+    float blend = 0;
+    /// The filtered colour at (u, v), each channel 0..1. Inline and branch-free: the tiles call it
+    /// per pixel in loops the compiler vectorises.
+    void Sample(float u, float v, float rgb[3]) const;
+  };
+  /// The sampler for `lod`; the texture must have levels (Assign a texture of some size first).
+  Sampler SamplerAt(float lod) const;
+
+  /// The filtered colour at (u, v) and level of detail `lod`, each channel 0..1 (white when the
+  /// texture is empty).
   void Sample(float u, float v, float lod, float rgb[3]) const;
 
   const std::vector<Level>& levels() const { return levels_; }
@@ -44,6 +60,42 @@ class FilteredTexture {
 };
 
 /// Bilinear within `level` at (u, v), each channel 0..255.
-void SampleBilinear(const FilteredTexture::Level& level, float u, float v, float rgb[3]);
+inline void SampleBilinear(const FilteredTexture::Level& level, float u, float v, float rgb[3]) {
+  const float x = u * float(level.width) - 0.5f, y = v * float(level.height) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float tx = x - fx, ty = y - fy;
+  const int x0 = std::clamp(int(fx), 0, level.width - 1), x1 = std::clamp(int(fx) + 1, 0, level.width - 1);
+  const int y0 = std::clamp(int(fy), 0, level.height - 1), y1 = std::clamp(int(fy) + 1, 0, level.height - 1);
+  const uint32_t* row0 = &level.texels[size_t(y0) * level.width];
+  const uint32_t* row1 = &level.texels[size_t(y1) * level.width];
+  const uint32_t a = row0[x0], b = row0[x1], c = row1[x0], d = row1[x1];
+  for (int k = 0; k < 3; ++k) {
+    const float ta = float(a >> (8 * k) & 0xff), tb = float(b >> (8 * k) & 0xff);
+    const float tc = float(c >> (8 * k) & 0xff), td = float(d >> (8 * k) & 0xff);
+    const float top = ta + (tb - ta) * tx, bottom = tc + (td - tc) * tx;
+    rgb[k] = top + (bottom - top) * ty;
+  }
+}
+
+inline void FilteredTexture::Sampler::Sample(float u, float v, float rgb[3]) const {
+  float next[3];
+  SampleBilinear(*first, u, v, rgb);
+  SampleBilinear(*second, u, v, next);
+  for (int k = 0; k < 3; ++k) rgb[k] = (rgb[k] + (next[k] - rgb[k]) * blend) * (1.0f / 255);
+}
+
+inline FilteredTexture::Sampler FilteredTexture::SamplerAt(float lod) const {
+  const int last = int(levels_.size()) - 1;
+  const int level = std::clamp(int(lod), 0, last);
+  return {&levels_[size_t(level)], &levels_[size_t(std::min(level + 1, last))], level < last ? lod - float(level) : 0.0f};
+}
+
+inline void FilteredTexture::Sample(float u, float v, float lod, float rgb[3]) const {
+  if (levels_.empty()) {
+    rgb[0] = rgb[1] = rgb[2] = 1;
+    return;
+  }
+  SamplerAt(lod).Sample(u, v, rgb);
+}
 
 }  // namespace flagsim::render

@@ -58,10 +58,9 @@ class BlockShader {
 
   /// `pattern` is read only when kPatterned, at level of detail `lod`.
   BlockShader(const Planes& planes, const Material& material, const FilteredTexture* pattern, float lod = 0)
-      : planes_(planes),
-        base_{material.colour[0], material.colour[1], material.colour[2]},
-        pattern_(pattern),
-        lod_(lod) {}
+      : planes_(planes), base_{material.colour[0], material.colour[1], material.colour[2]} {
+    if constexpr (kPatterned) sampler_ = pattern->SamplerAt(lod);
+  }
 
   /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
   /// in that column. One loop over the lanes, so that each step's values stay in vector
@@ -80,7 +79,7 @@ class BlockShader {
       float base[3] = {base_[0], base_[1], base_[2]};
       if constexpr (kPatterned) {
         float texel[3];
-        pattern_->Sample(c[6], c[7], lod_, texel);
+        sampler_.Sample(c[6], c[7], texel);
 #pragma GCC unroll 3
         for (int j = 0; j < 3; ++j) base[j] *= texel[j];
       }
@@ -92,8 +91,7 @@ class BlockShader {
  private:
   const Planes& planes_;
   float base_[3];
-  const FilteredTexture* pattern_;
-  float lod_;
+  FilteredTexture::Sampler sampler_;  ///< kPatterned: the triangle's levels
 };
 
 /// The n pixels of a row from fx0 pixels past the box's first column, kSpanLanes at a time:
