@@ -159,11 +159,13 @@ TlsSetup SelfSignedTls(const std::string& directory, const std::vector<std::stri
     std::error_code made;
     std::filesystem::create_directories(directory, made);
     if (made) throw std::runtime_error("cannot make the directory " + directory + ": " + made.message());
-    const auto [new_key, new_certificate] = MakeSelfSigned(hosts);
-    WritePem(key, true, [&](std::FILE* file) {
-      return PEM_write_PrivateKey(file, new_key.get(), nullptr, nullptr, 0, nullptr, nullptr);
+    const std::pair<KeyPtr, X509Ptr> pair = MakeSelfSigned(hosts);
+    EVP_PKEY* new_key = pair.first.get();
+    X509* new_certificate = pair.second.get();
+    WritePem(key, true, [new_key](std::FILE* file) {
+      return PEM_write_PrivateKey(file, new_key, nullptr, nullptr, 0, nullptr, nullptr);
     });
-    WritePem(certificate, false, [&](std::FILE* file) { return PEM_write_X509(file, new_certificate.get()); });
+    WritePem(certificate, false, [new_certificate](std::FILE* file) { return PEM_write_X509(file, new_certificate); });
   }
   TlsSetup setup = LoadTls(certificate, key);
   setup.self_signed = true;

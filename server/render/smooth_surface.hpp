@@ -19,7 +19,7 @@
 
 namespace flagsim::render {
 
-constexpr float kTargetCellPixels = 8;  ///< px across a drawn cell, at most, where the flag is nearest
+constexpr float kTargetCellPixels = 12;  ///< px across a drawn cell, at most, where the flag is nearest
 constexpr int kMaxRefinement = 4;
 
 /// A grid of nodes: cols x rows, node r * cols + c, positions in three arrays (m).

@@ -89,7 +89,7 @@ TEST(SmoothSurface, RefinedAsMuchAsThePictureNeeds) {
   EXPECT_EQ(RefinementFor(grid, camera), 1) << "far: a cell is a few pixels";
   camera.eye = Eigen::Vector3d(0.75, 1.65, 1.0);
   EXPECT_EQ(RefinementFor(grid, camera), kMaxRefinement) << "near: a cell is ~100 px";
-  camera.eye = Eigen::Vector3d(0.75, 1.65, 8);  // a cell ~12 px: refined twice
+  camera.eye = Eigen::Vector3d(0.75, 1.65, 6);  // a cell ~16 px: refined twice
   EXPECT_EQ(RefinementFor(grid, camera), 2);
 }
 
