@@ -55,6 +55,8 @@ void AddCameraCommand(CLI::App& app, Invocation& invocation);
 void AddKeyframeCommand(CLI::App& app, Invocation& invocation);
 // The simulation's clock: pause, resume, step, scale (flagctl_time.cpp).
 void AddTimeCommand(CLI::App& app, Invocation& invocation);
+// The flag's design (flagctl_design.cpp).
+void AddDesignCommand(CLI::App& app, Invocation& invocation);
 // A log's frames into pictures (flagctl_export.cpp); the live view (flagctl_serve.cpp).
 void AddExportCommand(CLI::App& app, Invocation& invocation);
 /// flagctl export of the log at `log` to `output` (its kind by its name), as the command runs it:

@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   for (const auto add :
        {AddWindCommand, AddSetCommand, AddResetCommand, AddParamsCommand, AddStatusCommand, AddRefreshCommand,
         AddWatchCommand, AddRecordCommand, AddExportCommand, AddSnapshotCommand, AddCameraCommand,
-        AddKeyframeCommand, AddTimeCommand, AddServeCommand, AddKeygenCommand}) {
+        AddKeyframeCommand, AddTimeCommand, AddDesignCommand, AddServeCommand, AddKeygenCommand}) {
     add(app, invocation);
   }
   std::signal(SIGINT, OnSignal);

@@ -29,6 +29,12 @@ enum class FlagDesign {
   kChecker,      ///< 8 x 8 squares: shows the mesh's parametrisation
 };
 
+/// The designs' names, in the enum's order (the `design` parameter's choices).
+inline const std::vector<std::string>& FlagDesignNames() {
+  static const std::vector<std::string> names = {"nordic_cross", "tricolour", "checker"};
+  return names;
+}
+
 /// The design drawn into a width x height texture.
 Texture MakePattern(FlagDesign design, int width, int height);
 

@@ -238,11 +238,15 @@ ParameterTable::ParameterTable() {
            "on the wall clock; a reset leaves it", &Scene::service, &ServiceSettings::time_scale),
       Make("shading", "", ParameterKind::kChoice, 0, double(render::ShadingModeNames().size() - 1),
            "how frames are shaded", &Scene::service, &ServiceSettings::shading),
+      Make("design", "", ParameterKind::kChoice, 0, double(render::FlagDesignNames().size() - 1),
+           "the flag's design, a built-in one by name (a scene file: design = \"NAME\" at its top level)",
+           &Scene::service, &ServiceSettings::design),
   };
   // The names of each choice parameter.
   for (Parameter& parameter : parameters_) {
     if (parameter.name == "integrator") parameter.choices = sim::IntegratorNames();
     if (parameter.name == "shading") parameter.choices = render::ShadingModeNames();
+    if (parameter.name == "design") parameter.choices = render::FlagDesignNames();
   }
 }
 

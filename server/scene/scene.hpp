@@ -6,6 +6,7 @@
 #include <string>
 
 #include "server/render/camera.hpp"
+#include "server/render/pattern.hpp"
 #include "server/render/shading_mode.hpp"
 #include "server/sim/sim_params.hpp"
 #include "server/sim/timeline.hpp"
@@ -20,6 +21,7 @@ struct ServiceSettings {
   /// wall clock at frame_rate). Not physics: a reset leaves it alone, and a render ignores it.
   double time_scale = 1.0;
   render::ShadingMode shading = render::ShadingMode::kGouraud;
+  render::FlagDesign design = render::FlagDesign::kNordicCross;  ///< what the flag shows
 };
 
 /// What the user left to the server's automatic model (server/model/auto_model.hpp): the

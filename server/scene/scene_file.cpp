@@ -283,6 +283,11 @@ Scene ParseScene(const std::string& text, const std::string& source) {
                          std::to_string(int(Scene::kMaxSettle)));
       }
       scene.settle = *value;
+    } else if (name == "design") {
+      const auto value = node.value<std::string>();
+      if (!value) throw SceneError(Where(source, node) + "design must be a string: the name of a built-in design");
+      const std::string problem = ParameterTable::Get().Assign("design", *value, &scene);
+      if (!problem.empty()) throw SceneError(Where(source, node) + problem);
     } else if (name == "parameters") {
       ReadParameters(Table(node, name, source), source, &scene);
     } else if (name == "wind") {
@@ -294,7 +299,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     } else {
       throw SceneError(
           Where(source, node) + "unknown key '" + name +
-          "'; known: name, description, seed, settle, [parameters], [wind], [camera], [timeline]");
+          "'; known: name, description, seed, settle, design, [parameters], [wind], [camera], [timeline]");
     }
   }
   ParameterTable::SettleAutoModel(&scene);

@@ -21,6 +21,7 @@ FrameInput FrameInput::Of(const Session& session, int64_t utime) {
   }
   input.camera = session.scene().camera;
   input.shading = session.scene().service.shading;
+  input.design = session.scene().service.design;
   input.pole_height = session.scene().sim.pole_height;
   input.pole_radius = session.scene().sim.pole_radius;
   input.info = MakeFrameInfo(session, utime);
@@ -30,10 +31,11 @@ FrameInput FrameInput::Of(const Session& session, int64_t utime) {
 // copied state => smooth surface, refined for the picture (the grid itself in wireframe) =>
 // flag mesh => frame
 const render::Framebuffer& FramePainter::Paint(const FrameInput& input, int threads) {
-  if (input.pole_height != pole_height_ || input.pole_radius != pole_radius_) {
-    scene_ = render::DefaultRenderScene(float(input.pole_height), float(input.pole_radius));
+  if (input.pole_height != pole_height_ || input.pole_radius != pole_radius_ || input.design != design_) {
+    scene_ = render::DefaultRenderScene(float(input.pole_height), float(input.pole_radius), input.design);
     pole_height_ = input.pole_height;
     pole_radius_ = input.pole_radius;
+    design_ = input.design;
   }
   grid_.cols = input.cols;
   grid_.rows = input.rows;

@@ -28,6 +28,7 @@ struct FrameInput {
   std::vector<float> x, y, z;  ///< m, node positions, cols * rows each
   render::Camera camera;
   render::ShadingMode shading = render::ShadingMode::kGouraud;
+  render::FlagDesign design = render::FlagDesign::kNordicCross;
   double pole_height = 0;  ///< m
   double pole_radius = 0;  ///< m
   FrameInfo info;          ///< for the manifest: the step, the time, the camera
@@ -47,6 +48,7 @@ class FramePainter {
   render::NodeGrid surface_;  ///< the smooth surface through them, refined for the picture
   render::RenderScene scene_;
   double pole_height_ = -1, pole_radius_ = -1;  ///< m, what scene_ was built for
+  render::FlagDesign design_ = render::FlagDesign::kNordicCross;  ///< what scene_'s pattern shows
   render::Renderer renderer_;
   render::Framebuffer framebuffer_;
 };

@@ -85,6 +85,14 @@ void ExpectError(const std::string& error, const std::string& expected) {
   EXPECT_NE(error.find(expected), std::string::npos) << "'" << error << "' lacks '" << expected << "'";
 }
 
+TEST(SceneFile, ADesignIsChosenByNameAtTheTopLevel) {
+  EXPECT_EQ(ParseScene("design = \"tricolour\"\n", "test.toml").service.design, render::FlagDesign::kTricolour);
+  EXPECT_EQ(ParseScene("name = \"x\"\n", "test.toml").service.design, render::FlagDesign::kNordicCross);
+  EXPECT_EQ(ErrorOf("design = \"union_jack\"\n"),
+            "test.toml:1: design: 'union_jack' is not a known name; allowed one of: nordic_cross, tricolour, checker");
+  EXPECT_EQ(ErrorOf("design = 3\n"), "test.toml:1: design must be a string: the name of a built-in design");
+}
+
 TEST(SceneFile, ReadsATimeline) {
   const Scene scene = ParseScene(R"(
 [timeline]
