@@ -307,6 +307,8 @@ async function checkClock(page) {
   await page.waitForTimeout(300);
   check("  a step count that is not one is refused on the page, and nothing is sent",
         await clock.locator("input.steps.invalid").count() === 1 && await hooks(page, () => window.flagsim.state.step) === stepBefore);
+  await clock.locator("input.steps").pressSequentially("1");
+  check("  and the mark goes as the box is typed in again", await clock.locator("input.steps.invalid").count() === 0);
   await clock.locator("select").selectOption("0.5");
   await waitFor(() => hooks(page, () => window.flagsim.status?.time_scale === 0.5), 10, "time_scale 0.5");
   await clock.getByRole("button", { name: "Resume" }).click();
