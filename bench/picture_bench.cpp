@@ -28,26 +28,6 @@ constexpr int kFactor = 3;                             ///< reference samples pe
 constexpr double kTimes[] = {0.25, 0.5, 0.75};         ///< s of simulated time
 constexpr int kMargin = 8;                             ///< px around the flag and pole's box
 
-/// A (width * factor) x (height * factor) RGB8 image => width x height, each factor x factor block
-/// of samples averaged per channel, rounded to nearest.
-std::vector<uint8_t> BoxFilter(const render::Framebuffer& large, int width, int height) {
-  const int samples = kFactor * kFactor;
-  std::vector<uint8_t> small(size_t(width) * height * 3);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      int sums[3] = {0, 0, 0};
-      for (int sy = 0; sy < kFactor; ++sy) {
-        for (int sx = 0; sx < kFactor; ++sx) {
-          const uint8_t* sample = large.Pixel(x * kFactor + sx, y * kFactor + sy);
-          for (int k = 0; k < 3; ++k) sums[k] += sample[k];
-        }
-      }
-      for (int k = 0; k < 3; ++k) small[(size_t(y) * width + x) * 3 + k] = uint8_t((sums[k] + samples / 2) / samples);
-    }
-  }
-  return small;
-}
-
 /// 1 inside the box of the flag's nodes and the pole's ends as `input`'s camera sees them, widened
 /// by kMargin, per pixel.
 std::vector<uint8_t> FlagRegion(const FrameInput& input) {
@@ -90,8 +70,8 @@ int main(int argc, char** argv) {
     FrameInput large = input;
     large.camera.width *= kFactor;
     large.camera.height *= kFactor;
-    const std::vector<uint8_t> reference =
-        BoxFilter(reference_painter.Paint(large, 2), input.camera.width, input.camera.height);
+    const render::Framebuffer& supersampled = reference_painter.Paint(large, 2);
+    const std::vector<uint8_t> reference = bench::BoxFilter(supersampled.rgb, supersampled.width, kFactor);
     const std::vector<uint8_t> region = FlagRegion(input);
     const double one = bench::MedianMs(3, frames, [&] { painter.Paint(input, 1); });
     const double two = bench::MedianMs(3, frames, [&] { painter.Paint(input, 2); });

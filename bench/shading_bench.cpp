@@ -103,34 +103,13 @@ render::RenderOptions FrameOptions(render::ShadingMode mode, bool keep_depth) {
   return options;
 }
 
-/// A (kWidth * factor) x (kHeight * factor) RGB8 image => kWidth x kHeight, each factor x factor
-/// block of samples averaged per channel, rounded to nearest.
-std::vector<uint8_t> BoxFilter(const render::Framebuffer& large, int factor) {
-  const int samples = factor * factor;
-  std::vector<uint8_t> small(size_t(kWidth) * kHeight * 3);
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      int sums[3] = {0, 0, 0};
-      for (int sample_y = 0; sample_y < factor; ++sample_y) {
-        for (int sample_x = 0; sample_x < factor; ++sample_x) {
-          const uint8_t* sample = large.Pixel(x * factor + sample_x, y * factor + sample_y);
-          for (int k = 0; k < 3; ++k) sums[k] += sample[k];
-        }
-      }
-      uint8_t* pixel = &small[(size_t(y) * kWidth + x) * 3];
-      for (int k = 0; k < 3; ++k) pixel[k] = uint8_t((sums[k] + samples / 2) / samples);
-    }
-  }
-  return small;
-}
-
 /// scene => Phong at kSupersampling times the size, box-filtered to kWidth x kHeight.
 std::vector<uint8_t> SupersampledPhong(const render::RenderScene& scene) {
   render::Renderer renderer;
   render::Framebuffer large;
   renderer.Render(scene, FrameCamera(kSupersampling), FrameOptions(render::ShadingMode::kPhong, false),
                   &large);
-  return BoxFilter(large, kSupersampling);
+  return bench::BoxFilter(large.rgb, large.width, kSupersampling);
 }
 
 /// scene (mesh 0 the flag) => 1 per pixel where the flag is drawn: the full scene's depth equals

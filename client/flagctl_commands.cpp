@@ -20,10 +20,7 @@
 #include "flagsim/wind_command_t.hpp"
 
 namespace flagsim {
-namespace {
 
-/// "NAME=VALUE" assignments, each name once => a PARAM command; `reset` first restores the scene
-/// (not the camera). Exit code.
 int SendParams(const Globals& globals, const std::vector<std::string>& assignments, bool reset) {
   param_command_t command{};
   command.reset_to_scene = reset;
@@ -46,6 +43,8 @@ int SendParams(const Globals& globals, const std::vector<std::string>& assignmen
   command.num_assignments = static_cast<int32_t>(command.names.size());
   return SendCommand(globals, &Channels::param, command);
 }
+
+namespace {
 
 /// REFRESH => ACK => the full state published for it, in a line.
 int Refresh(const Globals& globals) {

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "messages/channels.hpp"
 #include "messages/command_mac.hpp"
@@ -53,6 +54,10 @@ void AddSnapshotCommand(CLI::App& app, Invocation& invocation);
 // The camera's moves (flagctl_camera.cpp), the timeline (flagctl_keyframe.cpp).
 void AddCameraCommand(CLI::App& app, Invocation& invocation);
 void AddKeyframeCommand(CLI::App& app, Invocation& invocation);
+/// "NAME=VALUE" assignments, each name once => one PARAM command, applied together or not at
+/// all; `reset` first restores the scene (not the camera). Exit code.
+int SendParams(const Globals& globals, const std::vector<std::string>& assignments, bool reset);
+
 // The simulation's clock: pause, resume, step, scale (flagctl_time.cpp).
 void AddTimeCommand(CLI::App& app, Invocation& invocation);
 // The flag's design (flagctl_design.cpp).

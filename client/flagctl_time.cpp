@@ -5,7 +5,6 @@
 
 #include "client/flagctl_commands.hpp"
 #include "client/flagctl_link.hpp"
-#include "flagsim/param_command_t.hpp"
 #include "flagsim/time_command_t.hpp"
 
 namespace flagsim {
@@ -37,13 +36,7 @@ void AddScale(CLI::App* time, Invocation& invocation) {
       "scale", "run at S simulated seconds per wall-clock second (the time_scale parameter; a reset leaves it)");
   auto value = std::make_shared<std::string>();
   scale->add_option("S", *value, "0.1 .. 4; 1 is real time")->required();
-  invocation.RunOnParse(scale, [&invocation, value] {
-    param_command_t command{};
-    command.names = {"time_scale"};
-    command.values = {*value};
-    command.num_assignments = 1;
-    return SendCommand(invocation.globals, &Channels::param, command);
-  });
+  invocation.RunOnParse(scale, [&invocation, value] { return SendParams(invocation.globals, {"time_scale=" + *value}, false); });
 }
 
 }  // namespace

@@ -39,8 +39,6 @@ class McapWriter {
   /// The last chunk, the summary and the footer; "" or what went wrong writing the file.
   std::string Close();
 
-  uint64_t messages() const { return message_count_; }
-
  private:
   struct ChunkIndex {
     uint64_t start_time = 0, end_time = 0, offset = 0, length = 0;

@@ -72,6 +72,16 @@ json TimeJson(int64_t utime) {
   return {{"sec", micros / 1000000}, {"nsec", (micros % 1000000) * 1000}};
 }
 
+uint64_t Nanoseconds(int64_t utime) { return utime > 0 ? uint64_t(utime) * 1000 : 0; }
+
+bool CameraMoved(const json& camera, json* last) {
+  json pose = camera;
+  pose.erase("frame_id");
+  if (pose == *last) return false;
+  *last = std::move(pose);
+  return true;
+}
+
 std::string LawName(int law) {
   switch (law) {
     case timeline_key_t::LAW_STEP:

@@ -33,6 +33,13 @@ int LawOfName(const std::string& name);
 
 /// {"sec", "nsec"} of a time in microseconds since the Unix epoch.
 nlohmann::json TimeJson(int64_t utime);
+/// A time in microseconds since the Unix epoch in nanoseconds, as the protocol's and MCAP's
+/// timestamps are; 0 for none.
+uint64_t Nanoseconds(int64_t utime);
+
+/// Whether `camera` (CameraJson) shows another pose than `*last` (the frame id aside); then
+/// `*last` becomes it. The camera goes out when it moved, not with every frame.
+bool CameraMoved(const nlohmann::json& camera, nlohmann::json* last);
 
 /// `message` as text for a client. JSON is UTF-8, but a string from the bus holds whatever bytes
 /// its publisher put there: bytes that are not UTF-8 become U+FFFD, where nlohmann's dump()

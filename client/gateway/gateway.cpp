@@ -18,8 +18,6 @@ namespace {
 
 using nlohmann::json;
 
-uint64_t Nanoseconds(int64_t utime) { return utime > 0 ? uint64_t(utime) * 1000 : 0; }
-
 /// What a finished recording becomes: MCAP, made here, and a video where an exporter is given.
 std::vector<RecordingExports::Format> ExportFormats(const Channels& channels,
                                                     const RecordingExports::Exporter& video) {
@@ -133,14 +131,8 @@ void Gateway::OnFrame(const frame_t& manifest) {
   if (result != FrameMirror::Result::kComplete || !frame || frame->frame_id != manifest.frame_id) return;
   incomplete_in_a_row_ = 0;
   ++counters_.frames_mirrored;
-  // The camera goes out when it moved (compared without the frame id), not with every frame.
-  json camera = CameraJson(manifest);
-  json pose = camera;
-  pose.erase("frame_id");
-  if (pose != last_camera_) {
-    last_camera_ = std::move(pose);
-    feeds_[kCameraChannel].Publish(Nanoseconds(manifest.utime), JsonText(camera));
-  }
+  const json camera = CameraJson(manifest);
+  if (CameraMoved(camera, &last_camera_)) feeds_[kCameraChannel].Publish(Nanoseconds(manifest.utime), JsonText(camera));
   if (frame->image) {
     feeds_[kImageChannel].PublishLazily(Nanoseconds(frame->utime), [frame] {
       return CompressedImageJson(EncodeJpeg(frame->image->data(), frame->width, frame->height), frame->utime);

@@ -25,8 +25,6 @@ namespace {
 
 constexpr size_t kMaxMessageBytes = 1 << 20;
 
-uint64_t Nanoseconds(int64_t utime) { return utime > 0 ? uint64_t(utime) * 1000 : 0; }
-
 /// The live view's JSON channels in the file: each with its schema, written as the gateway
 /// advertises it.
 class McapChannels {
@@ -105,13 +103,8 @@ class SessionConverter {
     if (result == FrameMirror::Result::kIncomplete) ++report_->incomplete_frames;
     const auto frame = mirror_.latest();
     if (result != FrameMirror::Result::kComplete || !frame || frame->frame_id != manifest.frame_id) return;
-    nlohmann::json camera = CameraJson(manifest);
-    nlohmann::json pose = camera;
-    pose.erase("frame_id");
-    if (pose != last_camera_) {
-      last_camera_ = std::move(pose);
-      out_.Write(kCameraChannel, log_us, manifest.utime, JsonText(camera), report_);
-    }
+    const nlohmann::json camera = CameraJson(manifest);
+    if (CameraMoved(camera, &last_camera_)) out_.Write(kCameraChannel, log_us, manifest.utime, JsonText(camera), report_);
     const std::string jpeg = EncodeJpeg(frame->image->data(), frame->width, frame->height);
     out_.Write(kImageChannel, log_us, frame->utime, CompressedImageJson(jpeg, frame->utime), report_);
   }

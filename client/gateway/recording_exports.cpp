@@ -1,6 +1,5 @@
 #include "client/gateway/recording_exports.hpp"
 
-#include <cstdio>
 #include <filesystem>
 
 namespace flagsim::gateway {

@@ -287,9 +287,11 @@ async function checkClock(page) {
   await waitFor(() => hooks(page, () => window.flagsim.status?.paused === true), 10, "STATUS to say paused");
   const held = await waitFor(() => hooks(page, () => window.flagsim.state), 5, "a STATE");
   const framesBefore = await hooks(page, () => window.flagsim.framesShown);
-  await page.waitForTimeout(1500);
-  const later = await hooks(page, () => ({ state: window.flagsim.state, frames: window.flagsim.framesShown }));
-  check("Pause holds the state still (its hash the same after 1.5 s)",
+  const later = await waitFor(() => hooks(page, (from) => {  // a second of frames at 30 a second
+    const frames = window.flagsim.framesShown;
+    return frames >= from + 30 && { state: window.flagsim.state, frames };
+  }, framesBefore), 15, "30 frames while paused");
+  check("Pause holds the state still (its hash the same across 30 frames)",
         later.state.state_hash === held.state_hash && later.state.step === held.step, { held: held.step, later: later.state.step });
   check("  while frames keep coming", later.frames - framesBefore >= 10, later.frames - framesBefore);
   check("  and the clock says so", (await clock.locator(".clock-readout").textContent()).startsWith("paused"));
@@ -304,7 +306,8 @@ async function checkClock(page) {
   await clock.locator("input.steps").pressSequentially("abc");  // a number box takes none of it: its value is ""
   const stepBefore = await hooks(page, () => window.flagsim.state.step);
   await clock.getByRole("button", { name: "Step" }).click();
-  await page.waitForTimeout(300);
+  const frameAfterClick = await hooks(page, () => window.flagsim.frame.id);  // time for a stray command to show
+  await hooks(page, (id) => window.flagsim.waitForFrame((frame) => frame.id >= id + 10, 10000), frameAfterClick);
   check("  a step count that is not one is refused on the page, and nothing is sent",
         await clock.locator("input.steps.invalid").count() === 1 && await hooks(page, () => window.flagsim.state.step) === stepBefore);
   await clock.locator("input.steps").pressSequentially("1");
@@ -325,7 +328,10 @@ async function checkRecordingDownloads(page) {
   section("a recording, downloaded as MCAP and MP4");
   const tools = page.locator("#session-tools");
   await tools.getByRole("button", { name: "Record" }).click();
-  await page.waitForTimeout(3000);
+  await waitFor(() => hooks(page, () => {  // the recorder's own count, polled by the page each second
+    const seconds = Number(/([0-9.]+) s ·/.exec(document.querySelector(".record-text")?.textContent ?? "")?.[1]);
+    return seconds >= 2;
+  }), 20, "two seconds recorded");
   await tools.getByRole("button", { name: "Stop" }).click();
   const mcap = tools.locator(".downloads a", { hasText: "MCAP" });
   const mp4 = tools.locator(".downloads a", { hasText: "MP4" });
@@ -373,7 +379,6 @@ async function checkPhone(browser) {
   await cdp.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: fingers(20) });
   for (let spread = 25; spread <= 80; spread += 5) {
     await cdp.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: fingers(spread) });
-    await phone.waitForTimeout(30);
   }
   await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
   const span = (camera) => Math.hypot(...camera.eye.map((value, k) => value - camera.target[k]));
