@@ -178,23 +178,33 @@ function flagInPicture(page) {
   return page.evaluate(() => {
     const rgb = window.flagsim.imageRGB();
     const { width, height } = window.flagsim.frame;
+    const cloth = (p) => {
+      const [r, g, b] = [rgb[3 * p], rgb[3 * p + 1], rgb[3 * p + 2]];
+      return (r > 150 && g > 110 && b < 90) || (b > 70 && r < 45 && g < 120);  // yellow or blue
+    };
     let count = 0, sx = 0, sy = 0;
-    for (let i = 0, p = 0; i < rgb.length; i += 3, p += 1) {
-      const [r, g, b] = [rgb[i], rgb[i + 1], rgb[i + 2]];
-      const yellow = r > 150 && g > 110 && b < 90;
-      const blue = b > 70 && r < 45 && g < 120;
-      if (!yellow && !blue) continue;
+    for (let p = 0; p < width * height; p += 1) {
+      if (!cloth(p)) continue;
       count += 1;
       sx += p % width;
       sy += Math.floor(p / width);
     }
-    return { share: count / (width * height), x: sx / Math.max(count, 1), y: sy / Math.max(count, 1), width, height };
+    // The cloth's pixel nearest the centre of them all (the centre itself may fall on a fold's gap).
+    const [cx, cy] = [sx / Math.max(count, 1), sy / Math.max(count, 1)];
+    let x = cx, y = cy, best = Infinity;
+    for (let p = 0; p < width * height; p += 1) {
+      const d = (p % width - cx) ** 2 + (Math.floor(p / width) - cy) ** 2;
+      if (cloth(p) && d < best) [best, x, y] = [d, p % width, Math.floor(p / width)];
+    }
+    return { share: count / (width * height), x, y, width, height };
   });
 }
 
 async function checkZoomAndFrame(page) {
   section("zoom at the cursor, frame the flag");
   const span = (camera) => Math.hypot(...camera.eye.map((value, k) => value - camera.target[k]));
+  await flagctlRun("time", "pause");  // the flag holds still under the cursor while the wheel turns
+  await waitFor(() => hooks(page, () => window.flagsim.status?.paused === true), 10, "STATUS to say paused");
   const before = await hooks(page, () => window.flagsim.camera);
   const flag = await flagInPicture(page);
   const box = await page.locator("#picture").boundingBox();
@@ -218,6 +228,7 @@ async function checkZoomAndFrame(page) {
   check(`  and stop short of it: the cloth fills the picture (${(100 * close.share).toFixed(0)} % of it, ` +
         `${(100 * flag.share).toFixed(0)} % before), not sky and ground`, close.share > 0.3 && close.share > 3 * flag.share,
         { before: flag.share, after: close.share });
+  await flagctlRun("time", "resume");
   await page.locator("#stage").focus();
   await page.keyboard.press("f");
   const framed = await waitFor(() => hooks(page, (near) => {
