@@ -1,14 +1,16 @@
 // How close the live picture is to the right one, and what it costs: the default scene (the
 // breeze) stepped to a few times, each frame drawn as the server draws it (FramePainter: the
-// smooth surface, the filtered pattern) at 1280 x 720, against the same state through the same
-// pipeline at 3x the width and height, each 3 x 3 block averaged (the supersampled picture a
-// person would call right).
+// smooth surface, the filtered pattern) at 1280 x 720 with each anti-aliasing mode, against the
+// same state through the same pipeline at 3x the width and height with 8 samples a pixel, each
+// 3 x 3 block averaged (the supersampled picture a person would call right: 72 samples a
+// pixel), and against the same at 4x (128 samples a pixel).
 //
 //   build/bench/picture_bench [--frames N]
 //
-// Per time: PSNR (RGB, peak 255) over the region around the flag and the pole (the box of their
-// projected points, 8 px more on each side) and over the whole image, and the median time to paint
-// one frame on one and on two threads (N paints, 3 first discarded; default 20).
+// Per time and mode: PSNR (RGB, peak 255) over the region around the flag and the pole (the box
+// of their projected points, 8 px more on each side) against each reference and over the whole
+// image against the first, and the median time to paint one frame on one and on two threads
+// (N paints, 3 first discarded; default 20).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,7 +26,7 @@
 namespace flagsim {
 namespace {
 
-constexpr int kFactor = 3;                             ///< reference samples per pixel along each axis
+constexpr int kFactors[] = {3, 4};                     ///< the references' pixels per pixel along each axis
 constexpr double kTimes[] = {0.25, 0.5, 0.75};         ///< s of simulated time
 constexpr int kMargin = 8;                             ///< px around the flag and pole's box
 
@@ -61,22 +63,33 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--frames") == 0) frames = std::max(1, std::atoi(argv[i + 1]));
   const Scene scene;  // the breeze: the default scene, at its default camera (1280 x 720)
   Session session(scene);
-  std::printf("%-6s %12s %12s %10s %10s %8s\n", "t (s)", "flag dB", "image dB", "1 thr ms", "2 thr ms", "grid");
+  std::printf("%-6s %-6s %10s %10s %10s %9s %9s %8s\n", "t (s)", "aa", "flag dB 3x", "flag dB 4x", "image dB",
+              "1 thr ms", "2 thr ms", "grid");
   for (const double time : kTimes) {
     while (session.simulation().state().time < time - 1e-9) session.Step();
-    const FrameInput input = FrameInput::Of(session, 0);
-    FramePainter painter, reference_painter;
-    const render::Framebuffer frame = painter.Paint(input, 2);
-    FrameInput large = input;
-    large.camera.width *= kFactor;
-    large.camera.height *= kFactor;
-    const render::Framebuffer& supersampled = reference_painter.Paint(large, 2);
-    const std::vector<uint8_t> reference = bench::BoxFilter(supersampled.rgb, supersampled.width, kFactor);
+    FrameInput input = FrameInput::Of(session, 0);
+    std::vector<std::vector<uint8_t>> references;
+    for (const int factor : kFactors) {
+      FrameInput large = input;
+      large.camera.width *= factor;
+      large.camera.height *= factor;
+      large.antialias = render::Antialiasing::kMsaa8;
+      FramePainter reference_painter;
+      const render::Framebuffer& supersampled = reference_painter.Paint(large, 2);
+      references.push_back(bench::BoxFilter(supersampled.rgb, supersampled.width, factor));
+    }
     const std::vector<uint8_t> region = FlagRegion(input);
-    const double one = bench::MedianMs(3, frames, [&] { painter.Paint(input, 1); });
-    const double two = bench::MedianMs(3, frames, [&] { painter.Paint(input, 2); });
-    std::printf("%-6.2f %12.2f %12.2f %10.2f %10.2f %5dx%d\n", time, bench::Psnr(frame.rgb, reference, &region),
-                bench::Psnr(frame.rgb, reference), one, two, input.cols, input.rows);
+    for (size_t mode = 0; mode < render::AntialiasingNames().size(); ++mode) {
+      input.antialias = render::Antialiasing(mode);
+      FramePainter painter;
+      const render::Framebuffer frame = painter.Paint(input, 2);
+      const double one = bench::MedianMs(3, frames, [&] { painter.Paint(input, 1); });
+      const double two = bench::MedianMs(3, frames, [&] { painter.Paint(input, 2); });
+      std::printf("%-6.2f %-6s %10.2f %10.2f %10.2f %9.2f %9.2f %5dx%d\n", time,
+                  render::AntialiasingNames()[mode].c_str(), bench::Psnr(frame.rgb, references[0], &region),
+                  bench::Psnr(frame.rgb, references[1], &region), bench::Psnr(frame.rgb, references[0]), one, two,
+                  input.cols, input.rows);
+    }
   }
   return 0;
 }

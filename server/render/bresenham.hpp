@@ -40,20 +40,22 @@ struct LineSetup {
 };
 
 /// Draws the pixels of `line` that fall in `tile`, each where it is nearer than the depth
-/// buffer (depth interpolated along the line). A line drawn tile by tile draws exactly the
-/// pixels it would draw whole.
+/// buffer (depth interpolated along the line), at every sample of a multisampled tile. A line
+/// drawn tile by tile draws exactly the pixels it would draw whole.
 inline void DrawLine(const LineSetup& line, const TileTarget& target) {
   const TileRect& tile = target.rect;
   Bresenham(line.x0, line.y0, line.x1, line.y1, [&](int x, int y, float t) {
     if (x < tile.x0 || x >= tile.x1 || y < tile.y0 || y >= tile.y1) return;
-    float& depth = *target.Depth(x, y);
     const float z = line.z0 + t * (line.z1 - line.z0);
-    if (!(z < depth)) return;
-    depth = z;
-    uint8_t* pixel = target.Pixel(x, y);
-    pixel[0] = line.rgb[0];
-    pixel[1] = line.rgb[1];
-    pixel[2] = line.rgb[2];
+    for (int k = 0; k < target.samples; ++k) {
+      float& depth = *target.Depth(x, y, k);
+      if (!(z < depth)) continue;
+      depth = z;
+      uint8_t* pixel = target.Pixel(x, y, k);
+      pixel[0] = line.rgb[0];
+      pixel[1] = line.rgb[1];
+      pixel[2] = line.rgb[2];
+    }
   });
 }
 

@@ -67,7 +67,7 @@ float UvAreaPerPixel(const ScreenVertex s[3]) {
 
 /// Clipped, projected, set up: appends what is visible of one triangle to `out`.
 void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, const ClipVertex* c, int width,
-                  int height, std::vector<TriangleSetup>* out) {
+                  int height, int sample_reach, std::vector<TriangleSetup>* out) {
   ScreenVertex s[3];
   const ClipVertex* v[3] = {a, b, c};
   for (int i = 0; i < 3; ++i) s[i] = Project(*v[i], width, height);
@@ -75,7 +75,7 @@ void SetupVisible(const Mesh& mesh, const ClipVertex* a, const ClipVertex* b, co
   if (back && mesh.back_material < 0) return;  // culled
   for (int i = 0; i < 3; ++i) PickChannels(*v[i], back, &s[i]);
   TriangleSetup setup;
-  if (!SetupTriangle(s[0], s[1], s[2], width, height, &setup)) return;
+  if (!SetupTriangle(s[0], s[1], s[2], width, height, &setup, sample_reach)) return;
   setup.material = back ? mesh.back_material : mesh.front_material;
   setup.uv_area_per_pixel = UvAreaPerPixel(s);
   out->push_back(setup);
@@ -121,6 +121,7 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   context.pattern = &pattern_;
   context.mode = options.mode;
   context.eye = eye_;
+  context.samples = PatternOf(options.antialiasing);
   std::vector<ChunkWork> work;
   if (options.mode == ShadingMode::kWireframe) {
     LineStage(scene, camera.width, camera.height, options.tile_size);
@@ -139,7 +140,7 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
     const size_t end = std::min(work.size(), first + per_batch);
     const std::vector<ChunkWork> batch(work.begin() + first, work.begin() + end);
     PrimitiveStage(scene, batch, options.mode, camera.width, camera.height, options.tile_size,
-                   options.threads);
+                   context.samples.reach, options.threads);
     TileStage(context, options, first == 0, end == work.size(), framebuffer);
     if (end == work.size()) break;
   }
@@ -186,7 +187,7 @@ void Renderer::VertexStage(const RenderScene& scene, const Eigen::Matrix4f& clip
 
 // The batch's chunks of triangles (the same chunks at any thread count), each binned to the tiles.
 void Renderer::PrimitiveStage(const RenderScene& scene, const std::vector<ChunkWork>& work, ShadingMode mode,
-                              int width, int height, int tile_size, int threads) {
+                              int width, int height, int tile_size, int sample_reach, int threads) {
   chunks_.resize(work.size());
   const int items = static_cast<int>(work.size());
   ParallelFor(items, threads, [&](int w) {
@@ -203,13 +204,13 @@ void Renderer::PrimitiveStage(const RenderScene& scene, const std::vector<ChunkW
         case ClipTest::kOutside:
           break;
         case ClipTest::kInside:
-          SetupVisible(mesh, &v[0], &v[1], &v[2], width, height, &out);
+          SetupVisible(mesh, &v[0], &v[1], &v[2], width, height, sample_reach, &out);
           break;
         case ClipTest::kCrossing:
           clipped.clear();
           ClipTriangle(v[0], v[1], v[2], &clipped);
           for (size_t i = 0; i + 2 < clipped.size(); i += 3) {
-            SetupVisible(mesh, &clipped[i], &clipped[i + 1], &clipped[i + 2], width, height, &out);
+            SetupVisible(mesh, &clipped[i], &clipped[i + 1], &clipped[i + 2], width, height, sample_reach, &out);
           }
           break;
       }
@@ -270,23 +271,35 @@ void Renderer::TileStage(const ShadeContext& context, const RenderOptions& optio
     return std::all_of(chunks_.begin(), chunks_.end(),
                        [tile](const Chunk& chunk) { return chunk.bins[tile].empty(); });
   };
+  const int samples = context.samples.count;
+  if (!last_pass || !first_pass) between_passes_.Resize(framebuffer->width, framebuffer->height, samples);
   std::vector<TileBuffer> buffers;  // one per thread
-  for (int k = 0; k < std::max(1, options.threads); ++k) buffers.emplace_back(size);
+  for (int k = 0; k < std::max(1, options.threads); ++k) buffers.emplace_back(size, samples);
   ParallelForEachParticipant(tiles, options.threads, [&](int index, int participant) {
-    if (!first_pass && untouched(index)) return;
+    const bool drawn_on = first_pass || !untouched(index);
+    if (!drawn_on && !last_pass) return;  // its samples wait as they are
     TileRect rect;
     rect.x0 = (index % tiles_x_) * size;
     rect.y0 = (index / tiles_x_) * size;
     rect.x1 = std::min(rect.x0 + size, framebuffer->width);
     rect.y1 = std::min(rect.y0 + size, framebuffer->height);
     const TileTarget target = buffers[participant].Target(rect);
-    ClearTile(sky_rows_.data(), target);
-    if (!first_pass) CopyIn(*framebuffer, target);
-    for (const Chunk& chunk : chunks_) {
-      for (const uint32_t i : chunk.bins[index]) RasterizeTriangle(chunk.setups[i], context, target);
+    if (first_pass) {
+      ClearTile(sky_rows_.data(), target);
+    } else {
+      LoadTile(between_passes_, target);
     }
-    for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
-    CopyOut(target, options.keep_depth || !last_pass, framebuffer);
+    if (drawn_on) {
+      for (const Chunk& chunk : chunks_) {
+        for (const uint32_t i : chunk.bins[index]) RasterizeTriangle(chunk.setups[i], context, target);
+      }
+      for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
+    }
+    if (last_pass) {
+      CopyOut(target, options.keep_depth, framebuffer);
+    } else {
+      SaveTile(target, &between_passes_);
+    }
   });
 }
 

@@ -7,11 +7,12 @@
 //                    triangles whose box touches the tile, in order
 //   lines            wireframe: each line binned the same way
 //   tiles            in parallel, each in a small buffer of its own that stays in cache: sky,
-//                    the tile's triangles chunk after chunk (tile_raster.hpp), then copied out
+//                    the tile's triangles chunk after chunk (tile_raster.hpp), then copied out,
+//                    each pixel the mean of its samples when multisampled (sample_pattern.hpp)
 //
 // A mesh of more than RenderOptions::batch_triangles is drawn in passes, a batch of chunks at a
-// time: primitives, then the tiles that the batch's triangles touch, each copied in as the last
-// pass left it (colour and depth), drawn on and copied out again. The setups of one batch are
+// time: primitives, then the tiles that the batch's triangles touch, each loaded as the last
+// pass left it (every sample's colour and depth), drawn on and saved again. The setups of one batch are
 // held at a time (about 200 bytes a triangle), not the whole mesh's, and each tile still meets
 // its triangles in the same order, so the image is the same bit for bit.
 //
@@ -27,6 +28,7 @@
 #include "server/render/clipping.hpp"
 #include "server/render/framebuffer.hpp"
 #include "server/render/mesh.hpp"
+#include "server/render/sample_pattern.hpp"
 #include "server/render/tile_raster.hpp"
 #include "server/render/triangle_setup.hpp"
 
@@ -38,6 +40,7 @@ struct RenderOptions {
   int tile_size = 64;             ///< px, square tiles (the stream's tiles too), 8 and up
   bool keep_depth = false;        ///< also copy the depth buffer out (tiles keep it to themselves)
   int batch_triangles = 1 << 15;  ///< triangles set up at once; a bigger mesh is drawn in passes
+  Antialiasing antialiasing = Antialiasing::kOff;  ///< samples per pixel (lines: Bresenham's at every sample)
 };
 
 class Renderer {
@@ -57,7 +60,7 @@ class Renderer {
     int mesh, first, end;
   };
   void PrimitiveStage(const RenderScene& scene, const std::vector<ChunkWork>& work, ShadingMode mode,
-                      int width, int height, int tile_size, int threads);
+                      int width, int height, int tile_size, int sample_reach, int threads);
   void LineStage(const RenderScene& scene, int width, int height, int tile_size);
   /// The tiles' pass over the chunks set up last: the first pass clears every tile to the sky,
   /// a later one draws only on the tiles its triangles touch; all but the last keep the depth.
@@ -81,6 +84,7 @@ class Renderer {
   std::vector<uint32_t> sky_rows_;  ///< the sky's colour on each row of the image
   int tiles_x_ = 0, tiles_y_ = 0;
   std::vector<std::vector<uint32_t>> line_bins_;  ///< per tile: indices into lines_
+  SampleImage between_passes_;                    ///< the tiles' samples, when drawn in passes
 };
 
 }  // namespace flagsim::render

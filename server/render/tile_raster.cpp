@@ -1,98 +1,18 @@
 #include "server/render/tile_raster.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 #if defined(__AVX2__)
 #include <immintrin.h>
 #endif
 
+#include "server/render/multisample_raster.hpp"
+#include "server/render/span_shader.hpp"
+
 namespace flagsim::render {
 namespace {
-
-/// 0..1 => 0..255, rounded and clamped; branch-free so that the loops using it vectorise.
-/// Clamped above before the conversion to int and below after it, which is min(max(v, 0), 255)
-/// converted, in fewer vector instructions.
-uint32_t ToByte(float value) {
-  const int32_t truncated = static_cast<int32_t>(std::min(value * 255.0f + 0.5f, 255.0f));
-  return static_cast<uint32_t>(std::max(truncated, 0));
-}
-
-/// A triangle's planes side by side: depth, 1 / w, the channels, then zeros up to whole
-/// vectors. A row's values of them all are then a few vector operations.
-struct Planes {
-  static constexpr int kDepth = 0, kInverseW = 1, kChannel = 2;
-  static constexpr int kCount = 16;
-  static_assert(kChannel + kPlaneChannels <= kCount);
-
-  explicit Planes(const TriangleSetup& t) {
-    const auto put = [this](int k, const Plane& plane) {
-      origin[k] = plane.origin;
-      dx[k] = plane.dx;
-      dy[k] = plane.dy;
-    };
-    put(kDepth, t.depth);
-    put(kInverseW, t.inverse_w);
-    for (int k = 0; k < kPlaneChannels; ++k) put(kChannel + k, t.channels[k]);
-  }
-
-  /// Every plane along row fy: at[k] + dx[k] * fx at fx pixels from the box's first column.
-  void AlongRow(float fy, float at[kCount]) const {
-#pragma omp simd
-    for (int k = 0; k < kCount; ++k) at[k] = origin[k] + dy[k] * fy;
-  }
-
-  alignas(32) float origin[kCount] = {};
-  alignas(32) float dx[kCount] = {};
-  alignas(32) float dy[kCount] = {};
-};
-
-/// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
-/// base the material's colour, times the pattern filtered at (u, v) (channels 6, 7) and the
-/// triangle's level of detail when `kPatterned` (texture_filter.hpp). Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block
-/// of kSpanLanes pixels at once.
-template <bool kPatterned>
-class BlockShader {
- public:
-  static constexpr int kChannels = kPatterned ? 8 : 6;
-
-  /// `pattern` is read only when kPatterned, at level of detail `lod`.
-  BlockShader(const Planes& planes, const Material& material, const FilteredTexture* pattern, float lod = 0)
-      : planes_(planes), base_{material.colour[0], material.colour[1], material.colour[2]} {
-    if constexpr (kPatterned) sampler_ = pattern->SamplerAt(lod);
-  }
-
-  /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
-  /// in that column. One loop over the lanes, so that each step's values stay in vector
-  /// registers; the loops inside it are unrolled, which vectorising it needs.
-  template <class At>
-  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes]) const {
-    const float* step = planes_.dx;
-#pragma omp simd
-    for (int i = 0; i < kSpanLanes; ++i) {
-      const float w = 1.0f / (at(Planes::kInverseW, i) + step[Planes::kInverseW] * fx[i]);
-      float c[kChannels];
-#pragma GCC unroll 8
-      for (int k = 0; k < kChannels; ++k) {
-        c[k] = (at(Planes::kChannel + k, i) + step[Planes::kChannel + k] * fx[i]) * w;
-      }
-      float base[3] = {base_[0], base_[1], base_[2]};
-      if constexpr (kPatterned) {
-        float texel[3];
-        sampler_.Sample(c[6], c[7], texel);
-#pragma GCC unroll 3
-        for (int j = 0; j < 3; ++j) base[j] *= texel[j];
-      }
-      colour[i] = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
-                           ToByte(base[2] * c[2] + c[5]));
-    }
-  }
-
- private:
-  const Planes& planes_;
-  float base_[3];
-  FilteredTexture::Sampler sampler_;  ///< kPatterned: the triangle's levels
-};
 
 /// The n pixels of a row from fx0 pixels past the box's first column, kSpanLanes at a time:
 /// the depth test, then where any pixel of the block is in front, the block's colours stored
@@ -228,34 +148,17 @@ void RgbxToRgb(const uint32_t* rgbx, int n, uint8_t* rgb) {
   for (; i < n; ++i) std::memcpy(rgb + 3 * i, rgbx + i, 3);
 }
 
-/// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel, for the
-/// n pixels of a row from fx0 pixels past the box's first column. `at` holds the planes along
-/// the row; depth and rgbx point at the span's first pixel.
-void FillSpanPhong(const TriangleSetup& t, const ShadeContext& context, const Planes& planes,
-                   const float at[Planes::kCount], float fx0, int n, float* depth, uint32_t* rgbx) {
-  const RenderScene& scene = *context.scene;
-  const Material& material = scene.materials[t.material];
-  const auto value = [&](int k, float fx) { return at[k] + planes.dx[k] * fx; };
+/// Phong, for the n pixels of a row from fx0 pixels past the box's first column, each shaded
+/// only where it passes the depth test. `at` holds the planes along the row; depth and rgbx
+/// point at the span's first pixel.
+void FillSpanPhong(const PhongShader& shader, const Planes& planes, const float at[Planes::kCount], float fx0, int n,
+                   float* depth, uint32_t* rgbx) {
   for (int i = 0; i < n; ++i) {
     const float fx = fx0 + float(i);
-    const float depth_here = value(Planes::kDepth, fx);
+    const float depth_here = at[Planes::kDepth] + planes.dx[Planes::kDepth] * fx;
     if (!(depth_here < depth[i])) continue;
     depth[i] = depth_here;
-    const float w = 1.0f / value(Planes::kInverseW, fx);
-    float c[kPlaneChannels];
-    for (int k = 0; k < kPlaneChannels; ++k) c[k] = value(Planes::kChannel + k, fx) * w;
-    Eigen::Vector3f normal = Eigen::Vector3f(c[3], c[4], c[5]).normalized();
-    if (t.back_facing) normal = -normal;
-    const Shade shade =
-        ShadePoint(material, scene.lighting, Eigen::Vector3f(c[0], c[1], c[2]), normal, context.eye);
-    Eigen::Vector3f base = material.colour;
-    if (material.patterned) {
-      float texel[3];
-      context.pattern->Sample(c[6], c[7], context.pattern->LevelOfDetail(t.uv_area_per_pixel), texel);
-      base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]));
-    }
-    const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
-    rgbx[i] = PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
+    rgbx[i] = shader.ShadePixel([at](int k) { return at[k]; }, fx);
   }
 }
 
@@ -287,12 +190,49 @@ void FillRows(const TileTarget& target, int y_first, int y_last, Spans spans, co
   }
 }
 
+/// The mean of kSamples pixels `plane` words apart, for n pixels of a row: R and B summed in the
+/// two 16-bit halves of one word, G in another's, rounded and shifted.
+template <int kSamples>
+void ResolveRow(const uint32_t* rgbx, size_t plane, int n, uint32_t* out) {
+  static_assert((kSamples & (kSamples - 1)) == 0 && kSamples <= 256, "a power of two, summed in 16 bits");
+  constexpr int kShift = __builtin_ctz(unsigned(kSamples));
+  constexpr uint32_t kHalf = uint32_t(kSamples / 2) * 0x00010001u;
+#pragma omp simd
+  for (int i = 0; i < n; ++i) {
+    uint32_t red_blue = 0, green = 0;
+#pragma GCC unroll 8
+    for (int k = 0; k < kSamples; ++k) {
+      const uint32_t word = rgbx[plane * size_t(k) + size_t(i)];
+      red_blue += word & 0x00FF00FFu;
+      green += (word >> 8) & 0x00FF00FFu;
+    }
+    out[i] = (((red_blue + kHalf) >> kShift) & 0x00FF00FFu) | (((green + kHalf) >> kShift) & 0x00FF00FFu) << 8;
+  }
+}
+
+/// ResolveRow for the target's sample count.
+void Resolve(const TileTarget& target, const uint32_t* rgbx, int n, uint32_t* out) {
+  switch (target.samples) {
+    case 2:
+      return ResolveRow<2>(rgbx, target.plane, n, out);
+    case 4:
+      return ResolveRow<4>(rgbx, target.plane, n, out);
+    case 8:
+      return ResolveRow<8>(rgbx, target.plane, n, out);
+  }
+  std::abort();  // SamplePattern has 1, 2, 4 or 8 samples
+}
+
 }  // namespace
 
-TileBuffer::TileBuffer(int size)
+TileBuffer::TileBuffer(int size, int samples)
     : stride_(size_t(size) + kSpanLanes - 1),
-      rgbx_(stride_ * size, PackRgbx(0, 0, 0)),
-      depth_(stride_ * size, 1.0f) {}
+      plane_(stride_ * size_t(size)),
+      samples_(samples),
+      rgbx_(plane_ * size_t(samples), PackRgbx(0, 0, 0)),
+      depth_(plane_ * size_t(samples), 1.0f),
+      row_mask_(stride_),
+      row_colour_(stride_) {}
 
 TileTarget TileBuffer::Target(const TileRect& rect) {
   TileTarget target;
@@ -300,31 +240,73 @@ TileTarget TileBuffer::Target(const TileRect& rect) {
   target.rgbx = rgbx_.data();
   target.depth = depth_.data();
   target.stride = stride_;
+  target.samples = samples_;
+  target.plane = plane_;
+  target.row_mask = row_mask_.data();
+  target.row_colour = row_colour_.data();
   return target;
+}
+
+void SampleImage::Resize(int new_width, int new_height, int new_samples) {
+  width = new_width;
+  height = new_height;
+  samples = new_samples;
+  rgbx.resize(size_t(width) * height * samples);
+  depth.resize(size_t(width) * height * samples);
 }
 
 void CopyOut(const TileTarget& target, bool keep_depth, Framebuffer* framebuffer) {
   const TileRect& tile = target.rect;
   const int pixels = tile.x1 - tile.x0;
   for (int y = tile.y0; y < tile.y1; ++y) {
-    RgbxToRgb(target.Rgbx(tile.x0, y), pixels, framebuffer->Pixel(tile.x0, y));
-    if (keep_depth) {
-      std::memcpy(&framebuffer->depth[size_t(y) * framebuffer->width + tile.x0], target.Depth(tile.x0, y),
-                  size_t(pixels) * sizeof(float));
+    const uint32_t* row = target.Rgbx(tile.x0, y);
+    if (target.samples > 1) {
+      Resolve(target, row, pixels, target.row_colour);
+      row = target.row_colour;
+    }
+    RgbxToRgb(row, pixels, framebuffer->Pixel(tile.x0, y));
+    if (!keep_depth) continue;
+    float* depth = &framebuffer->depth[size_t(y) * framebuffer->width + tile.x0];
+    std::memcpy(depth, target.Depth(tile.x0, y), size_t(pixels) * sizeof(float));
+    for (int k = 1; k < target.samples; ++k) {
+      const float* sample = target.Depth(tile.x0, y, k);
+      for (int x = 0; x < pixels; ++x) depth[x] = std::min(depth[x], sample[x]);
     }
   }
 }
 
-void CopyIn(const Framebuffer& framebuffer, const TileTarget& target) {
+namespace {
+
+/// Calls copy(tile's row, image's row, pixels) for every sample's every row of the tile.
+template <class TileWord, class ImageWord, class Copy>
+void ForTileRows(const TileTarget& target, int image_width, int image_height, TileWord* tile_plane,
+                 ImageWord* image_plane, Copy copy) {
   const TileRect& tile = target.rect;
-  for (int y = tile.y0; y < tile.y1; ++y) {
-    const uint8_t* rgb = &framebuffer.rgb[(size_t(y) * framebuffer.width + tile.x0) * 3];
-    uint32_t* rgbx = target.Rgbx(tile.x0, y);
-    for (int x = 0; x < tile.x1 - tile.x0; ++x)
-      rgbx[x] = PackRgbx(rgb[3 * x], rgb[3 * x + 1], rgb[3 * x + 2]);
-    std::memcpy(target.Depth(tile.x0, y), &framebuffer.depth[size_t(y) * framebuffer.width + tile.x0],
-                size_t(tile.x1 - tile.x0) * sizeof(float));
+  const size_t image_plane_size = size_t(image_width) * image_height;
+  for (int k = 0; k < target.samples; ++k) {
+    for (int y = tile.y0; y < tile.y1; ++y) {
+      copy(tile_plane + target.plane * k + size_t(y - tile.y0) * target.stride,
+           image_plane + image_plane_size * k + size_t(y) * image_width + tile.x0, size_t(tile.x1 - tile.x0));
+    }
   }
+}
+
+}  // namespace
+
+void SaveTile(const TileTarget& target, SampleImage* image) {
+  const auto save = [](const auto* tile_row, auto* image_row, size_t n) {
+    std::memcpy(image_row, tile_row, n * sizeof(*tile_row));
+  };
+  ForTileRows(target, image->width, image->height, target.rgbx, image->rgbx.data(), save);
+  ForTileRows(target, image->width, image->height, target.depth, image->depth.data(), save);
+}
+
+void LoadTile(const SampleImage& image, const TileTarget& target) {
+  const auto load = [](auto* tile_row, const auto* image_row, size_t n) {
+    std::memcpy(tile_row, image_row, n * sizeof(*tile_row));
+  };
+  ForTileRows(target, image.width, image.height, target.rgbx, image.rgbx.data(), load);
+  ForTileRows(target, image.width, image.height, target.depth, image.depth.data(), load);
 }
 
 void SkyRows(const RenderScene& scene, int height, std::vector<uint32_t>* rows) {
@@ -340,21 +322,27 @@ void ClearTile(const uint32_t* sky_rows, const TileTarget& target) {
   // Whole blocks of kSpanLanes pixels, the last reaching into the row's room past x1.
   const TileRect& tile = target.rect;
   const int pixels = tile.x1 - tile.x0;
-  for (int y = tile.y0; y < tile.y1; ++y) {
-    const uint32_t colour = sky_rows[y];
-    uint32_t* rgbx = target.Rgbx(tile.x0, y);
-    float* depth = target.Depth(tile.x0, y);
-    for (int start = 0; start < pixels; start += kSpanLanes) {
+  for (int k = 0; k < target.samples; ++k) {
+    for (int y = tile.y0; y < tile.y1; ++y) {
+      const uint32_t colour = sky_rows[y];
+      uint32_t* rgbx = target.Rgbx(tile.x0, y, k);
+      float* depth = target.Depth(tile.x0, y, k);
+      for (int start = 0; start < pixels; start += kSpanLanes) {
 #pragma omp simd
-      for (int i = start; i < start + kSpanLanes; ++i) {
-        rgbx[i] = colour;
-        depth[i] = 1.0f;
+        for (int i = start; i < start + kSpanLanes; ++i) {
+          rgbx[i] = colour;
+          depth[i] = 1.0f;
+        }
       }
     }
   }
 }
 
 void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, const TileTarget& target) {
+  if (target.samples > 1) {
+    RasterizeMultisampled(t, context, target);
+    return;
+  }
   const TileRect& tile = target.rect;
   const int y_first = std::max(t.min_y, tile.y0), y_last = std::min(t.max_y, tile.y1 - 1);
   const int x_first = std::max(t.min_x, tile.x0), x_last = std::min(t.max_x, tile.x1 - 1);
@@ -395,8 +383,9 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
   };
   const Material& material = context.scene->materials[t.material];
   if (context.mode == ShadingMode::kPhong) {
+    const PhongShader shader(t, context, planes);
     fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
-      FillSpanPhong(t, context, planes, at, fx0, n, depth, rgbx);
+      FillSpanPhong(shader, planes, at, fx0, n, depth, rgbx);
     });
   } else if (material.patterned) {
     fill(BlockShader<true>(planes, material, context.pattern, context.pattern->LevelOfDetail(t.uv_area_per_pixel)));

@@ -2,18 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace flagsim::render {
 namespace {
 
 int64_t Snap(float pixels) { return static_cast<int64_t>(std::lround(double(pixels) * kSubpixels)); }
 
-/// Edge i's E + bias at the centre of pixel (x, y), in subpixels squared, E(P) = dx (Py - y_i) -
-/// dy (Px - x_i): >= 0 inside.
-int64_t EdgeAt(const TriangleSetup& setup, int i, int x, int y) {
+/// Edge i's E + bias at the centre of pixel (x, y) moved by `offset`, in subpixels squared,
+/// E(P) = dx (Py - y_i) - dy (Px - x_i): >= 0 inside.
+int64_t EdgeAt(const TriangleSetup& setup, int i, int x, int y, SampleOffset offset = {}) {
   const int64_t half = kSubpixels / 2;
-  return setup.edge_dx[i] * (int64_t(y) * kSubpixels + half - setup.edge_y[i]) -
-         setup.edge_dy[i] * (int64_t(x) * kSubpixels + half - setup.edge_x[i]) + setup.edge_bias[i];
+  return setup.edge_dx[i] * (int64_t(y) * kSubpixels + half + offset.y - setup.edge_y[i]) -
+         setup.edge_dy[i] * (int64_t(x) * kSubpixels + half + offset.x - setup.edge_x[i]) + setup.edge_bias[i];
 }
 
 /// floor(a / b) for b > 0.
@@ -40,7 +41,7 @@ bool IsBackFacing(const ScreenVertex& a, const ScreenVertex& b, const ScreenVert
 }
 
 bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int width, int height,
-                   TriangleSetup* setup) {
+                   TriangleSetup* setup, int sample_reach) {
   // Order the vertices so that the snapped area is positive: then inside means E >= 0.
   const ScreenVertex* v[3] = {&a, &b, &c};
   int64_t X[3], Y[3];
@@ -58,14 +59,15 @@ bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVer
     area2 = -area2;
   }
 
-  // Pixels whose centres (p + 1/2) lie in the box of the snapped vertices, inside the image.
+  // Pixels with a sample (p + 1/2, moved up to sample_reach) in the box of the snapped
+  // vertices, inside the image.
   const int64_t half = kSubpixels / 2;
   const auto first_pixel = [&](int64_t low) { return -FloorDiv(half - low, kSubpixels); };  // ceil
   const auto last_pixel = [&](int64_t high) { return FloorDiv(high - half, kSubpixels); };
-  setup->min_x = int(std::max<int64_t>(0, first_pixel(std::min({X[0], X[1], X[2]}))));
-  setup->min_y = int(std::max<int64_t>(0, first_pixel(std::min({Y[0], Y[1], Y[2]}))));
-  setup->max_x = int(std::min<int64_t>(width - 1, last_pixel(std::max({X[0], X[1], X[2]}))));
-  setup->max_y = int(std::min<int64_t>(height - 1, last_pixel(std::max({Y[0], Y[1], Y[2]}))));
+  setup->min_x = int(std::max<int64_t>(0, first_pixel(std::min({X[0], X[1], X[2]}) - sample_reach)));
+  setup->min_y = int(std::max<int64_t>(0, first_pixel(std::min({Y[0], Y[1], Y[2]}) - sample_reach)));
+  setup->max_x = int(std::min<int64_t>(width - 1, last_pixel(std::max({X[0], X[1], X[2]}) + sample_reach)));
+  setup->max_y = int(std::min<int64_t>(height - 1, last_pixel(std::max({Y[0], Y[1], Y[2]}) + sample_reach)));
   if (setup->min_x > setup->max_x || setup->min_y > setup->max_y) return false;
 
   for (int i = 0; i < 3; ++i) {
@@ -105,13 +107,14 @@ bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVer
   return true;
 }
 
-RowSpans::RowSpans(const TriangleSetup& setup, int y) : min_x_(setup.min_x), max_x_(setup.max_x) {
-  const int64_t py = int64_t(y) * kSubpixels + kSubpixels / 2;
+RowSpans::RowSpans(const TriangleSetup& setup, int y, SampleOffset sample)
+    : min_x_(setup.min_x), max_x_(setup.max_x) {
+  const int64_t py = int64_t(y) * kSubpixels + kSubpixels / 2 + sample.y;
   for (int i = 0; i < 3; ++i) {
     // As in RowSpan: inside when K + bias >= m px, K growing by dx * kSubpixels a row.
     const int64_t dy = setup.edge_dy[i];
-    const int64_t k = setup.edge_dx[i] * (py - setup.edge_y[i]) + dy * (setup.edge_x[i] - kSubpixels / 2) +
-                      setup.edge_bias[i];
+    const int64_t k = setup.edge_dx[i] * (py - setup.edge_y[i]) +
+                      dy * (setup.edge_x[i] - kSubpixels / 2 - sample.x) + setup.edge_bias[i];
     const int64_t growth = setup.edge_dx[i] * kSubpixels;
     Edge& edge = edges_[i];
     const int64_t m = dy * kSubpixels;
@@ -166,12 +169,30 @@ LaneSpans::LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y) : x0
   }
 }
 
-BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1) {
+LaneSamples::LaneSamples(const TriangleSetup& setup, int x0, int x_last, int y, const SampleOffset* offsets,
+                         int count)
+    : count_(count) {
+  // As LaneSpans; a sample (ox, oy) from the centre moves E by dx oy - dy ox, which with
+  // |ox|, |oy| < kSubpixels / 2 keeps LaneSpans' bound on |E| well within int32.
+  for (int i = 0; i < kWidth; ++i) past_end_[i] = x0 + i > x_last ? -1 : 0;
+  for (int e = 0; e < 3; ++e) {
+    growth_[e] = int32_t(setup.edge_dx[e] * kSubpixels);
+    const int64_t at_x0 = EdgeAt(setup, e, x0, y), per_pixel = -int64_t(setup.edge_dy[e]) * kSubpixels;
+    for (int i = 0; i < kWidth; ++i) inside_[e][i] = int32_t(at_x0 + per_pixel * i);
+    for (int k = 0; k < count; ++k)
+      shift_[k][e] = int32_t(int64_t(setup.edge_dx[e]) * offsets[k].y - int64_t(setup.edge_dy[e]) * offsets[k].x);
+  }
+}
+
+BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1, int sample_reach) {
   bool all = true;
+  const int r = sample_reach;
   for (int i = 0; i < 3; ++i) {
     int inside = 0;
-    for (const int x : {x0, x1}) {
-      for (const int y : {y0, y1}) inside += EdgeAt(setup, i, x, y) >= 0;
+    for (const auto& [x, ox] : {std::pair{x0, -r}, std::pair{x1, r}}) {
+      for (const auto& [y, oy] : {std::pair{y0, -r}, std::pair{y1, r}}) {
+        inside += EdgeAt(setup, i, x, y, SampleOffset{ox, oy}) >= 0;
+      }
     }
     if (inside == 0) return BoxCover::kNone;
     all = all && inside == 4;

@@ -24,6 +24,12 @@ struct Plane {
   float origin = 0, dx = 0, dy = 0;
 };
 
+/// A sample's place relative to the pixel centre, in subpixels (sample_pattern.hpp).
+struct SampleOffset {
+  int x = 0, y = 0;
+};
+constexpr int kMaxSamples = 8;  ///< per pixel
+
 /// One projected vertex: window position and what is interpolated.
 struct ScreenVertex {
   float x = 0, y = 0;   ///< px from the top-left corner of the image, y down
@@ -47,10 +53,12 @@ struct TriangleSetup {
   float uv_area_per_pixel = 0;     ///< (u, v) area per px² of the image: the pattern's level of detail
 };
 
-/// Snaps and sets up the triangle; false if it covers no pixel centre of a width x height
-/// image. `back_facing` is reported from the winding; vertex order is then fixed internally.
+/// Snaps and sets up the triangle; false if its box holds no pixel of a width x height image.
+/// The box holds the pixels whose samples, up to `sample_reach` subpixels from the centre in x
+/// and y (0: the centre alone), may fall inside the vertices' box. `back_facing` is reported
+/// from the winding; vertex order is then fixed internally.
 bool SetupTriangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int width, int height,
-                   TriangleSetup* setup);
+                   TriangleSetup* setup, int sample_reach = 0);
 
 /// The winding of a projected triangle before setup: true if it faces away from the camera.
 bool IsBackFacing(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c);
@@ -62,15 +70,18 @@ bool RowSpan(const TriangleSetup& setup, int y, int* first, int* last);
 enum class BoxCover { kNone, kPart, kAll };
 
 /// Pixels [x0, x1] x [y0, y1] (inclusive, within min_x .. max_x, min_y .. max_y), from the edge
-/// functions at the four corner pixels' centres: each is linear, so all four outside one edge
-/// leave the box uncovered, and all four inside every edge cover it all.
-BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1);
+/// functions at the four corner pixels' centres, moved out by `sample_reach` subpixels to hold
+/// every sample: each is linear, so all four outside one edge leave the box uncovered, and all
+/// four inside every edge cover it all.
+BoxCover CoverOfBox(const TriangleSetup& setup, int x0, int y0, int x1, int y1, int sample_reach = 0);
 
 /// The same spans row after row, with no division per row: each edge's bound floor(K / m)
 /// is carried as quotient and remainder, and K grows by the same amount every row.
 class RowSpans {
  public:
-  RowSpans(const TriangleSetup& setup, int y);  ///< positioned at row y
+  RowSpans() = default;  ///< no span on any row, until assigned
+  /// Positioned at row y, testing each pixel at its centre moved by `sample`.
+  RowSpans(const TriangleSetup& setup, int y, SampleOffset sample = {});
   bool Span(int* first, int* last) const;       ///< this row's covered pixels; false if none
   void NextRow();
 
@@ -82,7 +93,7 @@ class RowSpans {
     int sign = 0;                                   ///< of m: +1 bounds from above, -1 from below
   };
   Edge edges_[3];
-  int min_x_, max_x_;
+  int min_x_ = 0, max_x_ = -1;
 };
 
 /// The same spans in a window of kWidth columns from x0, for narrow triangles: each edge
@@ -106,6 +117,49 @@ class LaneSpans {
 };
 
 // Inline: a narrow triangle's rows are short, and a call would cost as much as either.
+/// LaneSpans' window, multisampled: per row, each lane's covered samples as bits.
+class LaneSamples {
+ public:
+  static constexpr int kWidth = LaneSpans::kWidth;
+
+  /// Positioned at row y, lanes limited to columns x0 .. x_last (x_last - x0 < kWidth), samples
+  /// at `offsets` (`count` of them, up to kMaxSamples, each within 1/2 px), for a `narrow` setup.
+  LaneSamples(const TriangleSetup& setup, int x0, int x_last, int y, const SampleOffset* offsets, int count);
+  /// This row's coverage: bit k of covered[i] set where lane i's sample k is inside; false if none.
+  bool Cover(int32_t covered[kWidth]) const;
+  void NextRow();
+
+ private:
+  int32_t inside_[3][kWidth];     ///< E + bias at each lane's pixel centre
+  int32_t growth_[3];             ///< of E a row
+  int32_t past_end_[kWidth];      ///< -1 for lanes past x_last, else 0
+  int32_t shift_[kMaxSamples][3]; ///< E at sample k less E at the centre, per edge
+  int count_;
+};
+
+inline bool LaneSamples::Cover(int32_t covered[kWidth]) const {
+  int any = 0;
+  for (int i = 0; i < kWidth; ++i) covered[i] = 0;
+  for (int k = 0; k < count_; ++k) {
+    const int32_t* shift = shift_[k];
+#pragma omp simd reduction(| : any)
+    for (int i = 0; i < kWidth; ++i) {
+      const int32_t in = ((inside_[0][i] + shift[0]) | (inside_[1][i] + shift[1]) | (inside_[2][i] + shift[2]) |
+                          past_end_[i]) >= 0;
+      covered[i] |= in << k;
+      any |= in;
+    }
+  }
+  return any != 0;
+}
+
+inline void LaneSamples::NextRow() {
+  for (int k = 0; k < 3; ++k) {
+#pragma omp simd
+    for (int i = 0; i < kWidth; ++i) inside_[k][i] += growth_[k];
+  }
+}
+
 inline bool LaneSpans::Span(int* first, int* last) const {
   // Inside all three edges and not past x_last: no sign bit in the or. Covered lanes are contiguous.
   int low = kWidth, high = -1;

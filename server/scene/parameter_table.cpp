@@ -241,12 +241,16 @@ ParameterTable::ParameterTable() {
       Make("design", "", ParameterKind::kChoice, 0, double(render::FlagDesignNames().size() - 1),
            "the flag's design, a built-in one by name (a scene file: design = \"NAME\" at its top level)",
            &Scene::service, &ServiceSettings::design),
+      Make("antialias", "", ParameterKind::kChoice, 0, double(render::AntialiasingNames().size() - 1),
+           "smooth edges: samples per pixel (msaa2, msaa4, msaa8), each pixel shaded once; off: one",
+           &Scene::service, &ServiceSettings::antialias),
   };
   // The names of each choice parameter.
   for (Parameter& parameter : parameters_) {
     if (parameter.name == "integrator") parameter.choices = sim::IntegratorNames();
     if (parameter.name == "shading") parameter.choices = render::ShadingModeNames();
     if (parameter.name == "design") parameter.choices = render::FlagDesignNames();
+    if (parameter.name == "antialias") parameter.choices = render::AntialiasingNames();
   }
 }
 

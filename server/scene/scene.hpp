@@ -7,6 +7,7 @@
 
 #include "server/render/camera.hpp"
 #include "server/render/pattern.hpp"
+#include "server/render/sample_pattern.hpp"
 #include "server/render/shading_mode.hpp"
 #include "server/sim/sim_params.hpp"
 #include "server/sim/timeline.hpp"
@@ -22,6 +23,7 @@ struct ServiceSettings {
   double time_scale = 1.0;
   render::ShadingMode shading = render::ShadingMode::kGouraud;
   render::FlagDesign design = render::FlagDesign::kNordicCross;  ///< what the flag shows
+  render::Antialiasing antialias = render::Antialiasing::kMsaa4;  ///< samples per pixel of a frame
 };
 
 /// What the user left to the server's automatic model (server/model/auto_model.hpp): the

@@ -22,6 +22,7 @@ FrameInput FrameInput::Of(const Session& session, int64_t utime) {
   input.camera = session.scene().camera;
   input.shading = session.scene().service.shading;
   input.design = session.scene().service.design;
+  input.antialias = session.scene().service.antialias;
   input.pole_height = session.scene().sim.pole_height;
   input.pole_radius = session.scene().sim.pole_radius;
   input.info = MakeFrameInfo(session, utime);
@@ -50,6 +51,7 @@ const render::Framebuffer& FramePainter::Paint(const FrameInput& input, int thre
   render::RenderOptions options;
   options.mode = input.shading;
   options.threads = threads;
+  options.antialiasing = input.antialias;
   renderer_.Render(scene_, input.camera, options, &framebuffer_);
   return framebuffer_;
 }

@@ -29,6 +29,7 @@ struct FrameInput {
   render::Camera camera;
   render::ShadingMode shading = render::ShadingMode::kGouraud;
   render::FlagDesign design = render::FlagDesign::kNordicCross;
+  render::Antialiasing antialias = render::Antialiasing::kOff;
   double pole_height = 0;  ///< m
   double pole_radius = 0;  ///< m
   FrameInfo info;          ///< for the manifest: the step, the time, the camera

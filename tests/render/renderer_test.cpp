@@ -33,18 +33,22 @@ Camera SmallCamera() {
 TEST(Renderer, SameImageAtAnyThreadCount) {
   const RenderScene scene = WavyFlagScene();
   Renderer renderer;
-  for (const ShadingMode mode :
-       {ShadingMode::kWireframe, ShadingMode::kFlat, ShadingMode::kGouraud, ShadingMode::kPhong}) {
-    Camera camera;  // full size: many tiles
-    Framebuffer reference;
-    RenderOptions options;
-    options.mode = mode;
-    renderer.Render(scene, camera, options, &reference);
-    for (const int threads : {2, 3, 4}) {
-      options.threads = threads;
-      Framebuffer framebuffer;
-      renderer.Render(scene, camera, options, &framebuffer);
-      EXPECT_EQ(framebuffer.rgb, reference.rgb) << int(mode) << " at " << threads << " threads";
+  for (const Antialiasing antialiasing : {Antialiasing::kOff, Antialiasing::kMsaa4}) {
+    for (const ShadingMode mode :
+         {ShadingMode::kWireframe, ShadingMode::kFlat, ShadingMode::kGouraud, ShadingMode::kPhong}) {
+      Camera camera;  // full size: many tiles
+      Framebuffer reference;
+      RenderOptions options;
+      options.mode = mode;
+      options.antialiasing = antialiasing;
+      renderer.Render(scene, camera, options, &reference);
+      for (const int threads : {2, 3}) {
+        options.threads = threads;
+        Framebuffer framebuffer;
+        renderer.Render(scene, camera, options, &framebuffer);
+        EXPECT_EQ(framebuffer.rgb, reference.rgb)
+            << int(mode) << " " << AntialiasingNames()[int(antialiasing)] << " at " << threads << " threads";
+      }
     }
   }
 }
@@ -54,10 +58,14 @@ TEST(Renderer, SameImageAtAnyThreadCount) {
 TEST(Renderer, PassesOfSmallBatchesDrawTheImageOfOnePass) {
   const RenderScene scene = WavyFlagScene(64, 48);
   Renderer renderer;
-  for (const ShadingMode mode : {ShadingMode::kFlat, ShadingMode::kGouraud, ShadingMode::kPhong}) {
+  for (const auto& [mode, antialiasing] :
+       {std::pair{ShadingMode::kFlat, Antialiasing::kOff}, std::pair{ShadingMode::kGouraud, Antialiasing::kOff},
+        std::pair{ShadingMode::kPhong, Antialiasing::kOff}, std::pair{ShadingMode::kGouraud, Antialiasing::kMsaa4},
+        std::pair{ShadingMode::kPhong, Antialiasing::kMsaa2}}) {
     Camera camera;
     RenderOptions options;
     options.mode = mode;
+    options.antialiasing = antialiasing;
     options.keep_depth = true;
     Framebuffer whole, passes;
     renderer.Render(scene, camera, options, &whole);

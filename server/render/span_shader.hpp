@@ -1,0 +1,147 @@
+// How the tiles shade a triangle's pixels, shared by the single-sample spans (tile_raster.cpp)
+// and the multisampled rows (multisample_raster.cpp): the triangle's planes side by side, and
+// shaders that colour a block of kSpanLanes pixels of one row at once.
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cstdint>
+
+#include "server/render/mesh.hpp"
+#include "server/render/shading.hpp"
+#include "server/render/texture_filter.hpp"
+#include "server/render/tile_raster.hpp"
+#include "server/render/triangle_setup.hpp"
+
+namespace flagsim::render {
+
+/// 0..1 => 0..255, rounded and clamped; branch-free so that the loops using it vectorise.
+/// Clamped above before the conversion to int and below after it, which is min(max(v, 0), 255)
+/// converted, in fewer vector instructions.
+inline uint32_t ToByte(float value) {
+  const int32_t truncated = static_cast<int32_t>(std::min(value * 255.0f + 0.5f, 255.0f));
+  return static_cast<uint32_t>(std::max(truncated, 0));
+}
+
+/// A triangle's planes side by side: depth, 1 / w, the channels, then zeros up to whole
+/// vectors. A row's values of them all are then a few vector operations.
+struct Planes {
+  static constexpr int kDepth = 0, kInverseW = 1, kChannel = 2;
+  static constexpr int kCount = 16;
+  static_assert(kChannel + kPlaneChannels <= kCount);
+
+  explicit Planes(const TriangleSetup& t) {
+    const auto put = [this](int k, const Plane& plane) {
+      origin[k] = plane.origin;
+      dx[k] = plane.dx;
+      dy[k] = plane.dy;
+    };
+    put(kDepth, t.depth);
+    put(kInverseW, t.inverse_w);
+    for (int k = 0; k < kPlaneChannels; ++k) put(kChannel + k, t.channels[k]);
+  }
+
+  /// Every plane along row fy: at[k] + dx[k] * fx at fx pixels from the box's first column.
+  void AlongRow(float fy, float at[kCount]) const {
+#pragma omp simd
+    for (int k = 0; k < kCount; ++k) at[k] = origin[k] + dy[k] * fy;
+  }
+
+  alignas(32) float origin[kCount] = {};
+  alignas(32) float dx[kCount] = {};
+  alignas(32) float dy[kCount] = {};
+};
+
+/// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
+/// base the material's colour, times the pattern filtered at (u, v) (channels 6, 7) and the
+/// triangle's level of detail when `kPatterned` (texture_filter.hpp). Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block
+/// of kSpanLanes pixels at once.
+template <bool kPatterned>
+class BlockShader {
+ public:
+  static constexpr int kChannels = kPatterned ? 8 : 6;
+
+  /// `pattern` is read only when kPatterned, at level of detail `lod`.
+  BlockShader(const Planes& planes, const Material& material, const FilteredTexture* pattern, float lod = 0)
+      : planes_(planes), base_{material.colour[0], material.colour[1], material.colour[2]} {
+    if constexpr (kPatterned) sampler_ = pattern->SamplerAt(lod);
+  }
+
+  /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
+  /// in that column. One loop over the lanes, so that each step's values stay in vector
+  /// registers; the loops inside it are unrolled, which vectorising it needs.
+  template <class At>
+  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes]) const {
+    const float* step = planes_.dx;
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) {
+      const float w = 1.0f / (at(Planes::kInverseW, i) + step[Planes::kInverseW] * fx[i]);
+      float c[kChannels];
+#pragma GCC unroll 8
+      for (int k = 0; k < kChannels; ++k) {
+        c[k] = (at(Planes::kChannel + k, i) + step[Planes::kChannel + k] * fx[i]) * w;
+      }
+      float base[3] = {base_[0], base_[1], base_[2]};
+      if constexpr (kPatterned) {
+        float texel[3];
+        sampler_.Sample(c[6], c[7], texel);
+#pragma GCC unroll 3
+        for (int j = 0; j < 3; ++j) base[j] *= texel[j];
+      }
+      colour[i] = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
+                           ToByte(base[2] * c[2] + c[5]));
+    }
+  }
+
+ private:
+  const Planes& planes_;
+  float base_[3];
+  FilteredTexture::Sampler sampler_;  ///< kPatterned: the triangle's levels
+};
+
+/// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel, with the
+/// material's colour times the filtered pattern when patterned. The same Shade as BlockShader's,
+/// a pixel at a time: per-pixel lighting does not vectorise as the interpolated light does.
+class PhongShader {
+ public:
+  PhongShader(const TriangleSetup& t, const ShadeContext& context, const Planes& planes)
+      : t_(t), context_(context), planes_(planes), material_(context.scene->materials[t.material]) {
+    if (material_.patterned) sampler_ = context.pattern->SamplerAt(context.pattern->LevelOfDetail(t.uv_area_per_pixel));
+  }
+
+  /// The colour fx pixels from the box's first column on a row where plane k is at(k) there.
+  template <class At>
+  uint32_t ShadePixel(const At& at, float fx) const {
+    const auto value = [&](int k) { return at(k) + planes_.dx[k] * fx; };
+    const float w = 1.0f / value(Planes::kInverseW);
+    float c[kPlaneChannels];
+    for (int k = 0; k < kPlaneChannels; ++k) c[k] = value(Planes::kChannel + k) * w;
+    Eigen::Vector3f normal = Eigen::Vector3f(c[3], c[4], c[5]).normalized();
+    if (t_.back_facing) normal = -normal;
+    const render::Shade shade =
+        ShadePoint(material_, context_.scene->lighting, Eigen::Vector3f(c[0], c[1], c[2]), normal, context_.eye);
+    Eigen::Vector3f base = material_.colour;
+    if (material_.patterned) {
+      float texel[3];
+      sampler_.Sample(c[6], c[7], texel);
+      base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]));
+    }
+    const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
+    return PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
+  }
+
+  /// BlockShader's interface: a block of pixels at fx[i].
+  template <class At>
+  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes]) const {
+    for (int i = 0; i < kSpanLanes; ++i) colour[i] = ShadePixel([&](int k) { return at(k, i); }, fx[i]);
+  }
+
+ private:
+  const TriangleSetup& t_;
+  const ShadeContext& context_;
+  const Planes& planes_;
+  const Material& material_;
+  FilteredTexture::Sampler sampler_;  ///< when patterned: the triangle's levels
+};
+
+}  // namespace flagsim::render
