@@ -27,6 +27,9 @@ struct FramebufferFunctions {
   PFNGLDELETERENDERBUFFERSPROC DeleteRenderbuffers = nullptr;
   PFNGLBINDRENDERBUFFERPROC BindRenderbuffer = nullptr;
   PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage = nullptr;
+  PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC RenderbufferStorageMultisample = nullptr;
+  PFNGLBLITFRAMEBUFFERPROC BlitFramebuffer = nullptr;
+  PFNGLGENERATEMIPMAPPROC GenerateMipmap = nullptr;
 };
 
 FramebufferFunctions gl_framebuffer;
@@ -47,7 +50,9 @@ bool LoadFramebufferFunctions() {
          Load("glGenRenderbuffers", &f.GenRenderbuffers) &&
          Load("glDeleteRenderbuffers", &f.DeleteRenderbuffers) &&
          Load("glBindRenderbuffer", &f.BindRenderbuffer) &&
-         Load("glRenderbufferStorage", &f.RenderbufferStorage);
+         Load("glRenderbufferStorage", &f.RenderbufferStorage) &&
+         Load("glRenderbufferStorageMultisample", &f.RenderbufferStorageMultisample) &&
+         Load("glBlitFramebuffer", &f.BlitFramebuffer) && Load("glGenerateMipmap", &f.GenerateMipmap);
 }
 
 std::string EglError(const std::string& what) {
@@ -136,42 +141,59 @@ std::string GlContext::RendererName() const {
 // ---- GlSceneRenderer -----------------------------------------------------------------------
 
 GlSceneRenderer::~GlSceneRenderer() {
-  if (framebuffer_ != 0) gl_framebuffer.DeleteFramebuffers(1, &framebuffer_);
-  const GLuint renderbuffers[2] = {colour_buffer_, depth_buffer_};
-  if (colour_buffer_ != 0) gl_framebuffer.DeleteRenderbuffers(2, renderbuffers);
+  for (const unsigned framebuffer : {framebuffer_, resolved_framebuffer_}) {
+    if (framebuffer != 0) gl_framebuffer.DeleteFramebuffers(1, &framebuffer);
+  }
+  for (const unsigned renderbuffer : {colour_buffer_, depth_buffer_, resolved_buffer_}) {
+    if (renderbuffer != 0) gl_framebuffer.DeleteRenderbuffers(1, &renderbuffer);
+  }
   if (pattern_texture_ != 0) glDeleteTextures(1, &pattern_texture_);
 }
 
-// (size, pattern) => framebuffer object bound, pattern texture, fixed state
-std::string GlSceneRenderer::Init(int width, int height, const render::Texture& pattern) {
+// (size, samples, pattern) => framebuffer objects bound, pattern texture, fixed state
+std::string GlSceneRenderer::Init(int width, int height, int samples, const render::Texture& pattern) {
   const FramebufferFunctions& f = gl_framebuffer;
   width_ = width;
   height_ = height;
-  GLuint renderbuffers[2] = {0, 0};
-  f.GenRenderbuffers(2, renderbuffers);
-  colour_buffer_ = renderbuffers[0];
-  depth_buffer_ = renderbuffers[1];
-  f.BindRenderbuffer(GL_RENDERBUFFER, colour_buffer_);
-  f.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-  f.BindRenderbuffer(GL_RENDERBUFFER, depth_buffer_);
-  f.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-  f.GenFramebuffers(1, &framebuffer_);
-  f.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-  f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_buffer_);
-  f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer_);
-  if (f.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return "framebuffer incomplete";
+  samples_ = samples;
+  const auto storage = [&](unsigned* renderbuffer, GLenum format, int count) {
+    f.GenRenderbuffers(1, renderbuffer);
+    f.BindRenderbuffer(GL_RENDERBUFFER, *renderbuffer);
+    if (count > 1) {
+      f.RenderbufferStorageMultisample(GL_RENDERBUFFER, count, format, width, height);
+    } else {
+      f.RenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+    }
+  };
+  const auto attach = [&](unsigned* framebuffer, unsigned colour, unsigned depth) {
+    f.GenFramebuffers(1, framebuffer);
+    f.BindFramebuffer(GL_FRAMEBUFFER, *framebuffer);
+    f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    if (depth != 0) f.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    return f.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  };
+  if (samples > 1) {  // the resolved image: one sample a pixel, read back
+    storage(&resolved_buffer_, GL_RGBA8, 1);
+    if (!attach(&resolved_framebuffer_, resolved_buffer_, 0)) return "resolve framebuffer incomplete";
+  }
+  storage(&colour_buffer_, GL_RGBA8, samples);
+  storage(&depth_buffer_, GL_DEPTH_COMPONENT24, samples);
+  if (!attach(&framebuffer_, colour_buffer_, depth_buffer_)) return "framebuffer incomplete";
   glDrawBuffer(GL_COLOR_ATTACHMENT0);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glViewport(0, 0, width, height);
+  if (samples > 1) glEnable(GL_MULTISAMPLE);
 
   // Rows as stored: GL puts the first row at t = 0, which is flagsim's v = 0 (the top edge).
+  // Trilinear, as flagsim's tiles sample it (texture_filter.hpp).
   glGenTextures(1, &pattern_texture_);
   glBindTexture(GL_TEXTURE_2D, pattern_texture_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, pattern.width, pattern.height, 0, GL_RGB, GL_UNSIGNED_BYTE,
                pattern.rgb.data());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  f.GenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
@@ -190,9 +212,17 @@ void GlSceneRenderer::Render(const render::RenderScene& scene, const render::Cam
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
   for (const render::Mesh& mesh : scene.meshes) DrawMesh(scene, mesh);
+  if (samples_ > 1) {  // each pixel the mean of its samples, into the framebuffer read back
+    const FramebufferFunctions& f = gl_framebuffer;
+    f.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+    f.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved_framebuffer_);
+    f.BlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    f.BindFramebuffer(GL_READ_FRAMEBUFFER, resolved_framebuffer_);
+  }
   glFinish();
   rgba->resize(size_t(width_) * height_ * 4);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba->data());
+  if (samples_ > 1) gl_framebuffer.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
 }
 
 // sky colours => a quad over the whole image. Flagsim gives row y (top 0) the colour

@@ -5,7 +5,9 @@
 //   material   ambient ka colour, diffuse kd colour, specular ks (white), shininess
 //   lights     ambient 0, diffuse = specular = the light's colour; w = 0 directional, 1 point
 //   model      the scene's ambient, local viewer, two-sided, separate specular colour
-//   pattern    GL_MODULATE, nearest texel, rows uploaded as stored (t = v, row 0 at v = 0)
+//   pattern    GL_MODULATE, trilinear (GL_LINEAR_MIPMAP_LINEAR), rows uploaded as stored (t = v,
+//              row 0 at v = 0)
+//   samples    1, or n per pixel (multisampled renderbuffers, resolved by a blit before reading)
 //
 // so that per vertex GL computes colour * D (primary colour) and S (secondary colour), and per
 // pixel texel * primary + secondary: flagsim's base * D + S. The sky is a full-screen quad drawn
@@ -40,8 +42,9 @@ class GlContext {
   void* context_ = nullptr;  ///< EGLContext
 };
 
-/// A width x height framebuffer object (RGBA8 colour, 24-bit depth) and the scene's pattern as a
-/// texture, drawn into with fixed-function lighting. Lives inside a current GlContext.
+/// A width x height framebuffer object (RGBA8 colour, 24-bit depth, one or more samples a
+/// pixel) and the scene's pattern as a texture, drawn into with fixed-function lighting. Lives
+/// inside a current GlContext.
 class GlSceneRenderer {
  public:
   GlSceneRenderer() = default;
@@ -49,11 +52,11 @@ class GlSceneRenderer {
   GlSceneRenderer& operator=(const GlSceneRenderer&) = delete;
   ~GlSceneRenderer();
 
-  /// Creates the framebuffer and the texture and sets the state that stays; "" or what went wrong.
-  std::string Init(int width, int height, const render::Texture& pattern);
+  /// Creates the framebuffer(s) and the texture and sets the state that stays; "" or what went wrong.
+  std::string Init(int width, int height, int samples, const render::Texture& pattern);
 
-  /// (scene, camera) => the frame drawn (vertex arrays sent again), finished (glFinish) and read
-  /// into `rgba`: RGBA8, rows bottom to top as GL stores them. The camera's image size must be
+  /// (scene, camera) => the frame drawn (vertex arrays sent again), resolved when multisampled,
+  /// finished (glFinish) and read into `rgba`: RGBA8, rows bottom to top as GL stores them. The camera's image size must be
   /// Init's.
   void Render(const render::RenderScene& scene, const render::Camera& camera, std::vector<uint8_t>* rgba);
 
@@ -65,9 +68,12 @@ class GlSceneRenderer {
 
   int width_ = 0;                 ///< px
   int height_ = 0;                ///< px
-  unsigned framebuffer_ = 0;      ///< GL framebuffer object
-  unsigned colour_buffer_ = 0;    ///< GL renderbuffer, RGBA8
-  unsigned depth_buffer_ = 0;     ///< GL renderbuffer, DEPTH_COMPONENT24
+  int samples_ = 1;               ///< per pixel
+  unsigned framebuffer_ = 0;      ///< GL framebuffer object drawn into
+  unsigned colour_buffer_ = 0;    ///< GL renderbuffer, RGBA8, samples_ a pixel
+  unsigned depth_buffer_ = 0;     ///< GL renderbuffer, DEPTH_COMPONENT24, samples_ a pixel
+  unsigned resolved_framebuffer_ = 0;  ///< multisampled: the resolved image, read back
+  unsigned resolved_buffer_ = 0;       ///< its GL renderbuffer, RGBA8
   unsigned pattern_texture_ = 0;  ///< GL texture, RGB8
 };
 

@@ -1,6 +1,7 @@
 // Flagsim's renderer (Gouraud) against Mesa's llvmpipe drawing the same scene with OpenGL's fixed
-// function (gl_scene.hpp), in the same run: image sizes x flag grids x threads, the median time
-// to a finished image in memory, and the PSNR between the two images.
+// function (gl_scene.hpp), in the same run and at equal quality: image sizes x flag grids x
+// threads x anti-aliasing (none, or 4 samples a pixel on both sides; the pattern trilinear on
+// both), the median time to a finished image in memory, and the PSNR between the two images.
 //
 //   build/bench/llvmpipe_bench [--threads N] [--frames N] [--out DIR]
 //
@@ -45,6 +46,7 @@ constexpr int kWarmupFrames = 5;  ///< drawn and discarded before timing
 constexpr std::pair<int, int> kImageSizes[] = {{640, 480}, {1280, 720}, {1920, 1080}};  ///< px
 constexpr std::pair<int, int> kFlagGrids[] = {{32, 24}, {64, 48}, {128, 96}};           ///< nodes
 constexpr std::pair<int, int> kSavedSize{1280, 720}, kSavedGrid{64, 48};  ///< the pair --out writes
+constexpr int kSampleCounts[] = {1, 4};  ///< per pixel: no anti-aliasing, then 4x multisampling
 
 struct Options {
   std::vector<int> threads{1, 2};
@@ -54,7 +56,7 @@ struct Options {
 
 /// One line of the table.
 struct Row {
-  int width = 0, height = 0, cols = 0, rows = 0, threads = 0;
+  int width = 0, height = 0, cols = 0, rows = 0, threads = 0, samples = 1;
   double flagsim_ms = 0;   ///< median per frame
   double llvmpipe_ms = 0;  ///< median per frame
   double psnr_db = 0;      ///< infinite when the images are equal
@@ -85,12 +87,13 @@ bool ParseOptions(int argc, char** argv, Options* options) {
   return true;
 }
 
-/// (scene, camera, threads) => flagsim's median frame time, and its last image.
-double TimeFlagsim(const render::RenderScene& scene, const render::Camera& camera, int threads, int frames,
-                   std::vector<uint8_t>* image) {
+/// (scene, camera, threads, samples: 1 or 4) => flagsim's median frame time, and its last image.
+double TimeFlagsim(const render::RenderScene& scene, const render::Camera& camera, int threads, int samples,
+                   int frames, std::vector<uint8_t>* image) {
   render::RenderOptions options;
   options.mode = render::ShadingMode::kGouraud;
   options.threads = threads;
+  options.antialiasing = samples > 1 ? render::Antialiasing::kMsaa4 : render::Antialiasing::kOff;
   render::Renderer renderer;
   render::Framebuffer framebuffer;
   const double ms =
@@ -99,11 +102,12 @@ double TimeFlagsim(const render::RenderScene& scene, const render::Camera& camer
   return ms;
 }
 
-/// (scene, camera) => llvmpipe's median frame time, and its last image as RGB8 rows top first.
-double TimeLlvmpipe(const render::RenderScene& scene, const render::Camera& camera, int frames,
+/// (scene, camera, samples) => llvmpipe's median frame time, and its last image as RGB8 rows top
+/// first.
+double TimeLlvmpipe(const render::RenderScene& scene, const render::Camera& camera, int samples, int frames,
                     std::vector<uint8_t>* image, std::string* error) {
   bench::GlSceneRenderer renderer;
-  *error = renderer.Init(camera.width, camera.height, scene.pattern);
+  *error = renderer.Init(camera.width, camera.height, samples, scene.pattern);
   if (!error->empty()) return 0;
   std::vector<uint8_t> rgba;
   const double ms = bench::MedianMs(kWarmupFrames, frames, [&] { renderer.Render(scene, camera, &rgba); });
@@ -117,7 +121,7 @@ std::string WriteImages(const std::string& out_dir, const Row& row, const ImageP
   std::filesystem::create_directories(out_dir, ignored);
   const std::string suffix = std::to_string(row.width) + "x" + std::to_string(row.height) + "_" +
                              std::to_string(row.cols) + "x" + std::to_string(row.rows) + "_" +
-                             std::to_string(row.threads) + "t.png";
+                             std::to_string(row.threads) + "t_" + std::to_string(row.samples) + "s.png";
   std::string error = WritePng(out_dir + "/flagsim_" + suffix, row.width, row.height, images.flagsim.data());
   if (error.empty()) {
     error = WritePng(out_dir + "/llvmpipe_" + suffix, row.width, row.height, images.llvmpipe.data());
@@ -133,8 +137,8 @@ bool Measure(Row* row, const Options& options) {
   camera.height = row->height;
   ImagePair images;
   std::string error;
-  row->flagsim_ms = TimeFlagsim(scene, camera, row->threads, options.frames, &images.flagsim);
-  row->llvmpipe_ms = TimeLlvmpipe(scene, camera, options.frames, &images.llvmpipe, &error);
+  row->flagsim_ms = TimeFlagsim(scene, camera, row->threads, row->samples, options.frames, &images.flagsim);
+  row->llvmpipe_ms = TimeLlvmpipe(scene, camera, row->samples, options.frames, &images.llvmpipe, &error);
   if (error.empty()) row->psnr_db = bench::Psnr(images.flagsim, images.llvmpipe);
   const bool saved =
       std::pair{row->width, row->height} == kSavedSize && std::pair{row->cols, row->rows} == kSavedGrid;
@@ -144,15 +148,15 @@ bool Measure(Row* row, const Options& options) {
 }
 
 void PrintHeader() {
-  std::printf("%-10s %-7s %7s %11s %11s %15s %9s\n", "size", "flag", "threads", "flagsim ms", "llvmpipe ms",
-              "flagsim/llvmp.", "PSNR dB");
+  std::printf("%-10s %-7s %7s %7s %11s %11s %15s %9s\n", "size", "flag", "threads", "samples", "flagsim ms",
+              "llvmpipe ms", "flagsim/llvmp.", "PSNR dB");
 }
 
 void PrintRow(const Row& row) {
   const std::string size = std::to_string(row.width) + "x" + std::to_string(row.height);
   const std::string flag = std::to_string(row.cols) + "x" + std::to_string(row.rows);
-  std::printf("%-10s %-7s %7d %11.2f %11.2f %15.2f %9.2f\n", size.c_str(), flag.c_str(), row.threads,
-              row.flagsim_ms, row.llvmpipe_ms, row.flagsim_ms / row.llvmpipe_ms, row.psnr_db);
+  std::printf("%-10s %-7s %7d %7d %11.2f %11.2f %15.2f %9.2f\n", size.c_str(), flag.c_str(), row.threads,
+              row.samples, row.flagsim_ms, row.llvmpipe_ms, row.flagsim_ms / row.llvmpipe_ms, row.psnr_db);
   std::fflush(stdout);
 }
 
@@ -174,9 +178,11 @@ int RunThreadCount(int threads, const Options& options) {
   }
   for (const auto& [width, height] : kImageSizes) {
     for (const auto& [cols, rows] : kFlagGrids) {
-      Row row{width, height, cols, rows, threads};
-      if (!Measure(&row, options)) return 1;
-      PrintRow(row);
+      for (const int samples : kSampleCounts) {
+        Row row{width, height, cols, rows, threads, samples};
+        if (!Measure(&row, options)) return 1;
+        PrintRow(row);
+      }
     }
   }
   return 0;

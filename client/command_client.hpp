@@ -57,6 +57,8 @@ class CommandClient {
   }
 
   const std::string& client_id() const { return client_id_; }
+  /// The sequence number of the last command sent (0 before any).
+  int64_t last_sequence() const { return sequence_; }
 
   /// Work to do between looks at the bus while an answer is awaited (an in-process server's
   /// loop, say); by default the client only waits on the bus.

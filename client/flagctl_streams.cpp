@@ -82,8 +82,10 @@ int Watch(const Globals& globals, double duration, const std::atomic<bool>& stop
 }
 
 /// Asks for a keyframe, assembles the tiles, checks the frame hash, writes a PNG or a JPEG as the
-/// file's name says (picture_file.hpp). Frames count
-/// once the request is answered; if no answer comes within kRefreshAnswerWait (nobody takes
+/// file's name says (picture_file.hpp). Once the request is answered, the frames that count are
+/// the keyframe naming it and any drawn from a later step than the one it was taken at: frames
+/// still in the server's pipeline when it came may show the picture before the commands that
+/// preceded it (a camera size, say). If no answer comes within kRefreshAnswerWait (nobody takes
 /// commands: lcm-logplayer playing a log, say), any whole frame of the stream counts, and the
 /// request is sent again now and then in case a server is there after all.
 int Snapshot(const Globals& globals, const std::string& path) {
@@ -102,6 +104,9 @@ int Snapshot(const Globals& globals, const std::string& path) {
   CommandClient client(link.bus, link.channels, std::min(globals.timeout, kRefreshAnswerWait), link.signer);
   TileAssembler assembler;
   bool counting = false;  // frames count: after our request was answered, or with nobody answering
+  bool answered = false;
+  int64_t answered_step = -1;                           // the step our first answered request was taken at
+  const int64_t first_request = client.last_sequence() + 1;  // our requests' ids: first_request onwards
   bool complete = false, keyframe_incomplete = false;
   // The whole frame is the assembler's image once complete: the bus is not handled after that.
   int64_t frame_id = -1;
@@ -114,6 +119,8 @@ int Snapshot(const Globals& globals, const std::string& path) {
       [&](const frame_t& manifest) {
         const bool whole = assembler.AddManifest(manifest) == TileAssembler::FrameResult::kComplete;
         if (!counting || complete) return;
+        const bool ours = manifest.request_id >= first_request && manifest.request_id <= client.last_sequence();
+        if (answered && !ours && manifest.step <= answered_step) return;  // from before the request
         if (whole) {
           frame_id = manifest.frame_id;
           completed = MonotonicSeconds();
@@ -123,13 +130,15 @@ int Snapshot(const Globals& globals, const std::string& path) {
       },
       &invalid, 1000);
   const double start = MonotonicSeconds(), deadline = start + globals.timeout;
-  bool answered = false;
   while (!complete && MonotonicSeconds() < deadline) {
     // A keyframe that arrived with tiles missing calls for another request (a new id).
     keyframe_incomplete = false;
     const CommandOutcome outcome = client.Send(link.channels.refresh, refresh_request_t{});
     if (outcome.result == CommandOutcome::kRejected) return Report(link, outcome);
-    answered |= outcome.result == CommandOutcome::kAccepted;
+    if (outcome.result == CommandOutcome::kAccepted && !answered) {
+      answered = true;
+      answered_step = outcome.step;
+    }
     counting = true;
     const double wait =
         std::min(deadline - MonotonicSeconds(), answered ? globals.timeout : kRefreshAnswerWait);
