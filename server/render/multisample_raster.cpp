@@ -106,8 +106,8 @@ class MultisampledRows {
     const int n = last - first + 1;
     alignas(32) float at[Planes::kCount];
     planes_.AlongRow(float(y - t_.min_y), at);
-    uint8_t* won = target_.row_mask;
-    std::memset(won, 0, size_t(n));
+    int32_t* won = target_.row_mask;
+    std::memset(won, 0, size_t(n) * sizeof(*won));
     bool any = false;
     for (int k = 0; k < pattern_.count; ++k) {
       if (row[k].first <= row[k].last) any |= DepthTest(k, y, at[Planes::kDepth], row[k], won + (row[k].first - first));
@@ -121,11 +121,11 @@ class MultisampledRows {
   }
 
   /// Sample k's depth test along its span: nearer depths written, bit k set in won[] where so.
-  bool DepthTest(int k, int y, float depth_along_row, SampleSpan span, uint8_t* won) const {
+  bool DepthTest(int k, int y, float depth_along_row, SampleSpan span, int32_t* won) const {
     float* depth = target_.Depth(span.first, y, k);
     const float z_row = depth_along_row + depth_offset_[k], z_step = planes_.dx[Planes::kDepth];
     const float fx0 = float(span.first - t_.min_x);
-    const uint8_t bit = uint8_t(1u << k);
+    const int32_t bit = 1 << k;
     const int n = span.last - span.first + 1;
     int any = 0;
 #pragma omp simd reduction(| : any)
@@ -141,7 +141,7 @@ class MultisampledRows {
 
   /// Colours of the n pixels from column `first`, kSpanLanes at a time where any sample won.
   template <class Shader>
-  void ShadeRow(const Shader& shader, const float at[Planes::kCount], int first, int n, const uint8_t* won,
+  void ShadeRow(const Shader& shader, const float at[Planes::kCount], int first, int n, const int32_t* won,
                 uint32_t* colour) const {
     for (int start = 0; start < n; start += kSpanLanes) {
       int any = 0;
@@ -155,9 +155,9 @@ class MultisampledRows {
   }
 
   /// Sample k's colours where bit k of won[] is set.
-  void Store(int k, int y, SampleSpan span, const uint8_t* won, const uint32_t* colour) const {
+  void Store(int k, int y, SampleSpan span, const int32_t* won, const uint32_t* colour) const {
     uint32_t* rgbx = target_.Rgbx(span.first, y, k);
-    const uint8_t bit = uint8_t(1u << k);
+    const int32_t bit = 1 << k;
     const int n = span.last - span.first + 1;
 #pragma omp simd
     for (int i = 0; i < n; ++i) rgbx[i] = (won[i] & bit) ? colour[i] : rgbx[i];

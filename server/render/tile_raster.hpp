@@ -39,7 +39,7 @@ struct TileTarget {
   size_t stride = 0;  ///< pixels from one row to the next, rect.x1 - rect.x0 + kSpanLanes - 1 and up
   int samples = 1;    ///< per pixel
   size_t plane = 0;   ///< words from one sample's plane to the next
-  uint8_t* row_mask = nullptr;      ///< a row's worth (stride) of scratch, for multisampled rows
+  int32_t* row_mask = nullptr;      ///< a row's worth (stride) of scratch, for multisampled rows
   uint32_t* row_colour = nullptr;   ///< the same
 
   uint32_t* Rgbx(int x, int y, int sample = 0) const {
@@ -65,7 +65,7 @@ class TileBuffer {
   int samples_;
   std::vector<uint32_t> rgbx_;
   std::vector<float> depth_;
-  std::vector<uint8_t> row_mask_;
+  std::vector<int32_t> row_mask_;
   std::vector<uint32_t> row_colour_;
 };
 
