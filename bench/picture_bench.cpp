@@ -5,8 +5,10 @@
 // 3 x 3 block averaged (the supersampled picture a person would call right: 72 samples a
 // pixel), and against the same at 4x (128 samples a pixel).
 //
-//   build/bench/picture_bench [--frames N]
+//   build/bench/picture_bench [--frames N] [--out DIR]
 //
+// --out DIR writes, per time, the frame with the default anti-aliasing, the 3x reference and
+// their difference (times 4) as PNGs, to look at where the error is.
 // Per time and mode: PSNR (RGB, peak 255) over the region around the flag and the pole (the box
 // of their projected points, 8 px more on each side) against each reference and over the whole
 // image against the first, and the median time to paint one frame on one and on two threads
@@ -16,9 +18,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/measure.hpp"
+#include "common/png_file.hpp"
 #include "server/scene/scene.hpp"
 #include "server/service/frame_painter.hpp"
 #include "server/service/session.hpp"
@@ -53,14 +59,33 @@ std::vector<uint8_t> FlagRegion(const FrameInput& input) {
   return mask;
 }
 
+/// DIR/frame_T.png, reference_T.png and difference_T.png (|frame - reference| times 4, per channel).
+void WriteComparison(const std::string& dir, double time, const render::Framebuffer& frame,
+                     const std::vector<uint8_t>& reference) {
+  std::filesystem::create_directories(dir);
+  char suffix[32];
+  std::snprintf(suffix, sizeof suffix, "_%.2f.png", time);
+  std::vector<uint8_t> difference(frame.rgb.size());
+  for (size_t i = 0; i < difference.size(); ++i)
+    difference[i] = uint8_t(std::min(255, 4 * std::abs(int(frame.rgb[i]) - int(reference[i]))));
+  for (const auto& [name, rgb] : {std::pair{"frame", frame.rgb.data()}, std::pair{"reference", reference.data()},
+                                  std::pair{"difference", static_cast<const uint8_t*>(difference.data())}}) {
+    const std::string problem = WritePng(dir + "/" + name + suffix, frame.width, frame.height, rgb);
+    if (!problem.empty()) std::fprintf(stderr, "picture_bench: %s\n", problem.c_str());
+  }
+}
+
 }  // namespace
 }  // namespace flagsim
 
 int main(int argc, char** argv) {
   using namespace flagsim;
   int frames = 20;
-  for (int i = 1; i + 1 < argc; ++i)
+  std::string out_dir;
+  for (int i = 1; i + 1 < argc; ++i) {
     if (std::strcmp(argv[i], "--frames") == 0) frames = std::max(1, std::atoi(argv[i + 1]));
+    if (std::strcmp(argv[i], "--out") == 0) out_dir = argv[i + 1];
+  }
   const Scene scene;  // the breeze: the default scene, at its default camera (1280 x 720)
   Session session(scene);
   std::printf("%-6s %-6s %10s %10s %10s %9s %9s %8s\n", "t (s)", "aa", "flag dB 3x", "flag dB 4x", "image dB",
@@ -83,6 +108,9 @@ int main(int argc, char** argv) {
       input.antialias = render::Antialiasing(mode);
       FramePainter painter;
       const render::Framebuffer frame = painter.Paint(input, 2);
+      if (!out_dir.empty() && input.antialias == ServiceSettings{}.antialias) {
+        WriteComparison(out_dir, time, frame, references[0]);
+      }
       const double one = bench::MedianMs(3, frames, [&] { painter.Paint(input, 1); });
       const double two = bench::MedianMs(3, frames, [&] { painter.Paint(input, 2); });
       std::printf("%-6.2f %-6s %10.2f %10.2f %10.2f %9.2f %9.2f %5dx%d\n", time,

@@ -82,8 +82,13 @@ class MultisampledRows {
         }
       }
       if (!any) continue;
+      float fx_shaded[kLanes], fy_shaded[kLanes];
+      for (int i = 0; i < kLanes; ++i) {
+        fx_shaded[i] = fx[i] + pattern_.centroid_x[won[i]];
+        fy_shaded[i] = pattern_.centroid_y[won[i]];
+      }
       uint32_t colour[kLanes];
-      shader.Shade([&at](int k, int) { return at[k]; }, fx, colour);
+      shader.Shade(AtRowOffsets(at, fy_shaded), fx_shaded, colour);
       for (int k = 0; k < pattern_.count; ++k) {
         uint32_t* rgbx = target_.Rgbx(x_first_, y, k);
 #pragma omp simd
@@ -145,13 +150,21 @@ class MultisampledRows {
                 uint32_t* colour) const {
     for (int start = 0; start < n; start += kSpanLanes) {
       int any = 0;
-      float fx[kSpanLanes];
+      float fx[kSpanLanes], fy[kSpanLanes];
       for (int i = 0; i < kSpanLanes; ++i) {
-        any |= start + i < n ? won[start + i] : 0;
-        fx[i] = float(first - t_.min_x + std::min(start + i, n - 1));
+        const int32_t mask = start + i < n ? won[start + i] : 0;
+        any |= mask;
+        fx[i] = float(first - t_.min_x + std::min(start + i, n - 1)) + pattern_.centroid_x[mask];
+        fy[i] = pattern_.centroid_y[mask];
       }
-      if (any) shader.Shade([at](int k, int) { return at[k]; }, fx, colour + start);
+      if (any) shader.Shade(AtRowOffsets(at, fy), fx, colour + start);
     }
+  }
+
+  /// Plane k at lane i for the shaders: along the row, moved fy[i] px down.
+  auto AtRowOffsets(const float* at, const float* fy) const {
+    const float* dy = planes_.dy;
+    return [at, dy, fy](int k, int i) { return at[k] + dy[k] * fy[i]; };
   }
 
   /// Sample k's colours where bit k of won[] is set.

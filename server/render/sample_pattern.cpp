@@ -17,6 +17,19 @@ SamplePattern Sixteenths(std::initializer_list<SampleOffset> offsets) {
     pattern.offsets[pattern.count++] = in_subpixels;
     pattern.reach = std::max({pattern.reach, std::abs(in_subpixels.x), std::abs(in_subpixels.y)});
   }
+  const int all = (1 << pattern.count) - 1;
+  for (int mask = 1; mask < all; ++mask) {
+    float x = 0, y = 0;
+    int bits = 0;
+    for (int k = 0; k < pattern.count; ++k) {
+      if (!(mask >> k & 1)) continue;
+      x += float(pattern.offsets[k].x) / kSubpixels;
+      y += float(pattern.offsets[k].y) / kSubpixels;
+      ++bits;
+    }
+    pattern.centroid_x[mask] = x / bits;
+    pattern.centroid_y[mask] = y / bits;
+  }
   return pattern;
 }
 

@@ -30,6 +30,10 @@ struct SamplePattern {
   int count = 1;
   SampleOffset offsets[kMaxSamples] = {};
   int reach = 0;  ///< subpixels: the largest |offset| in x or y, how far past the centre a sample lies
+  /// px from the centre: the mean place of the samples whose bits are set in the index, where a
+  /// pixel a triangle wins only in part is shaded (inside the triangle, where the centre may not
+  /// be); the centre for all or none. Indexed by a mask of `count` bits.
+  float centroid_x[1 << kMaxSamples] = {}, centroid_y[1 << kMaxSamples] = {};
 };
 
 /// The samples of `mode`: one at the centre when off.
