@@ -34,7 +34,8 @@ void Bresenham(int x0, int y0, int x1, int y1, Plot plot) {
 
 /// A projected mesh edge: pixel endpoints, window depths, colour.
 struct LineSetup {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< px
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< px, the pixels the endpoints fall in
+  float fx0 = 0, fy0 = 0, fx1 = 0, fy1 = 0;  ///< px, the endpoints themselves (Wu's line)
   float z0 = 0, z1 = 0;                ///< window depth at each end
   uint8_t rgb[3] = {0, 0, 0};
 };

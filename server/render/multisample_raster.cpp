@@ -14,6 +14,18 @@ struct SampleSpan {
   int first = 0, last = -1;
 };
 
+/// Plane k at lane i for the shaders: `at` along the row, moved fy[i] px down.
+class AtRowOffsets {
+ public:
+  AtRowOffsets(const float* at, const Planes& planes, const float* fy) : at_(at), dy_(planes.dy), fy_(fy) {}
+  float operator()(int k, int i) const { return at_[k] + dy_[k] * fy_[i]; }
+
+ private:
+  const float* at_;
+  const float* dy_;
+  const float* fy_;
+};
+
 /// The rows y_first .. y_last of a triangle whose box in the tile is columns x_first .. x_last.
 /// `whole`: every sample of the box is inside (CoverOfBox's kAll), so no edge is walked.
 class MultisampledRows {
@@ -88,7 +100,7 @@ class MultisampledRows {
         fy_shaded[i] = pattern_.centroid_y[won[i]];
       }
       uint32_t colour[kLanes];
-      shader.Shade(AtRowOffsets(at, fy_shaded), fx_shaded, colour);
+      shader.Shade(AtRowOffsets(at, planes_, fy_shaded), fx_shaded, colour);
       for (int k = 0; k < pattern_.count; ++k) {
         uint32_t* rgbx = target_.Rgbx(x_first_, y, k);
 #pragma omp simd
@@ -157,14 +169,8 @@ class MultisampledRows {
         fx[i] = float(first - t_.min_x + std::min(start + i, n - 1)) + pattern_.centroid_x[mask];
         fy[i] = pattern_.centroid_y[mask];
       }
-      if (any) shader.Shade(AtRowOffsets(at, fy), fx, colour + start);
+      if (any) shader.Shade(AtRowOffsets(at, planes_, fy), fx, colour + start);
     }
-  }
-
-  /// Plane k at lane i for the shaders: along the row, moved fy[i] px down.
-  auto AtRowOffsets(const float* at, const float* fy) const {
-    const float* dy = planes_.dy;
-    return [at, dy, fy](int k, int i) { return at[k] + dy[k] * fy[i]; };
   }
 
   /// Sample k's colours where bit k of won[] is set.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/render/wu_line.hpp"
 
 namespace flagsim::render {
 namespace {
@@ -124,7 +125,7 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   context.samples = PatternOf(options.antialiasing);
   std::vector<ChunkWork> work;
   if (options.mode == ShadingMode::kWireframe) {
-    LineStage(scene, camera.width, camera.height, options.tile_size);
+    LineStage(scene, camera.width, camera.height, options.tile_size, options.antialiasing != Antialiasing::kOff);
   } else {
     lines_.clear();
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -231,7 +232,7 @@ void Renderer::BinChunk(int width, int height, int tile_size, Chunk* chunk) cons
 }
 
 // Mesh edges, clipped and projected to pixel endpoints, coloured by their material, and binned.
-void Renderer::LineStage(const RenderScene& scene, int width, int height, int tile_size) {
+void Renderer::LineStage(const RenderScene& scene, int width, int height, int tile_size, bool smooth) {
   lines_.clear();
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
@@ -245,22 +246,27 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height, int ti
         colour = colour.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) / 255.0f);
       }
       LineSetup line;
-      const auto to_pixel = [&](const Eigen::Vector4f& v, int* x, int* y, float* z) {
-        *x = static_cast<int>(std::floor((v.x() / v.w() + 1.0f) * 0.5f * width));
-        *y = static_cast<int>(std::floor((1.0f - v.y() / v.w()) * 0.5f * height));
+      const auto to_pixel = [&](const Eigen::Vector4f& v, float* fx, float* fy, int* x, int* y, float* z) {
+        *fx = (v.x() / v.w() + 1.0f) * 0.5f * width;
+        *fy = (1.0f - v.y() / v.w()) * 0.5f * height;
+        *x = static_cast<int>(std::floor(*fx));
+        *y = static_cast<int>(std::floor(*fy));
         *z = (v.z() / v.w() + 1.0f) * 0.5f;
       };
-      to_pixel(a, &line.x0, &line.y0, &line.z0);
-      to_pixel(b, &line.x1, &line.y1, &line.z1);
+      to_pixel(a, &line.fx0, &line.fy0, &line.x0, &line.y0, &line.z0);
+      to_pixel(b, &line.fx1, &line.fy1, &line.x1, &line.y1, &line.z1);
       for (int k = 0; k < 3; ++k)
         line.rgb[k] = static_cast<uint8_t>(std::clamp(colour[k], 0.0f, 1.0f) * 255 + 0.5f);
       lines_.push_back(line);
     }
   }
+  // Wu's line may touch the pixel next to its endpoints' across the major axis.
+  const int margin = smooth ? 1 : 0;
   for (uint32_t i = 0; i < lines_.size(); ++i) {
     const LineSetup& l = lines_[i];
-    ForTilesOfBox(std::min(l.x0, l.x1), std::min(l.y0, l.y1), std::max(l.x0, l.x1), std::max(l.y0, l.y1),
-                  width, height, tile_size, tiles_x_, [&](int tile) { line_bins_[tile].push_back(i); });
+    ForTilesOfBox(std::min(l.x0, l.x1) - margin, std::min(l.y0, l.y1) - margin, std::max(l.x0, l.x1) + margin,
+                  std::max(l.y0, l.y1) + margin, width, height, tile_size, tiles_x_,
+                  [&](int tile) { line_bins_[tile].push_back(i); });
   }
 }
 
@@ -293,7 +299,13 @@ void Renderer::TileStage(const ShadeContext& context, const RenderOptions& optio
       for (const Chunk& chunk : chunks_) {
         for (const uint32_t i : chunk.bins[index]) RasterizeTriangle(chunk.setups[i], context, target);
       }
-      for (const uint32_t i : line_bins_[index]) DrawLine(lines_[i], target);
+      for (const uint32_t i : line_bins_[index]) {
+        if (options.antialiasing == Antialiasing::kOff) {
+          DrawLine(lines_[i], target);
+        } else {
+          DrawSmoothLine(lines_[i], target);
+        }
+      }
     }
     if (last_pass) {
       CopyOut(target, options.keep_depth, framebuffer);

@@ -5,7 +5,8 @@
 //                    cull or pick the back material; snap and set up (triangle_setup.hpp);
 //                    in fixed chunks of triangles, each binned on its own: for every tile, its
 //                    triangles whose box touches the tile, in order
-//   lines            wireframe: each line binned the same way
+//   lines            wireframe: each line binned the same way; drawn as Bresenham's line, or as
+//                    Wu's (wu_line.hpp) when the frame is anti-aliased
 //   tiles            in parallel, each in a small buffer of its own that stays in cache: sky,
 //                    the tile's triangles chunk after chunk (tile_raster.hpp), then copied out,
 //                    each pixel the mean of its samples when multisampled (sample_pattern.hpp)
@@ -40,7 +41,7 @@ struct RenderOptions {
   int tile_size = 64;             ///< px, square tiles (the stream's tiles too), 8 and up
   bool keep_depth = false;        ///< also copy the depth buffer out (tiles keep it to themselves)
   int batch_triangles = 1 << 15;  ///< triangles set up at once; a bigger mesh is drawn in passes
-  Antialiasing antialiasing = Antialiasing::kOff;  ///< samples per pixel (lines: Bresenham's at every sample)
+  Antialiasing antialiasing = Antialiasing::kOff;  ///< samples per pixel; lines are Wu's unless off
 };
 
 class Renderer {
@@ -61,7 +62,8 @@ class Renderer {
   };
   void PrimitiveStage(const RenderScene& scene, const std::vector<ChunkWork>& work, ShadingMode mode,
                       int width, int height, int tile_size, int sample_reach, int threads);
-  void LineStage(const RenderScene& scene, int width, int height, int tile_size);
+  /// `smooth`: Wu's lines (anti-aliased frames), binned a pixel wider; else Bresenham's.
+  void LineStage(const RenderScene& scene, int width, int height, int tile_size, bool smooth);
   /// The tiles' pass over the chunks set up last: the first pass clears every tile to the sky,
   /// a later one draws only on the tiles its triangles touch; all but the last keep the depth.
   void TileStage(const ShadeContext& context, const RenderOptions& options, bool first_pass, bool last_pass,

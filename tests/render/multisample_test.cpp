@@ -21,7 +21,7 @@ constexpr Antialiasing kMultisampled[] = {Antialiasing::kMsaa2, Antialiasing::kM
 /// Materials: 0 white, 1 red, 2 green; colour = material * D with D = 1 and no specular.
 RenderScene Paints() {
   RenderScene scene;
-  for (const Eigen::Vector3f colour : {Eigen::Vector3f(1, 1, 1), Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, 1, 0)}) {
+  for (const Eigen::Vector3f& colour : {Eigen::Vector3f(1, 1, 1), Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, 1, 0)}) {
     Material material;
     material.colour = colour;
     scene.materials.push_back(material);
