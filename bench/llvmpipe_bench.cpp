@@ -131,7 +131,8 @@ std::string WriteImages(const std::string& out_dir, const Row& row, const ImageP
 
 /// (image size, flag grid, threads) => both renderers timed and compared, images written if asked.
 bool Measure(Row* row, const Options& options) {
-  const render::RenderScene scene = bench::BenchScene(row->cols, row->rows);
+  render::RenderScene scene = bench::BenchScene(row->cols, row->rows);
+  scene.shadow_light = -1;  // OpenGL's fixed function casts no shadow: neither side draws one
   render::Camera camera;
   camera.width = row->width;
   camera.height = row->height;

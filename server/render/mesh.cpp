@@ -104,7 +104,7 @@ Mesh GroundMesh(float x, float z, float size) {
   for (const auto& [dx, dz] : {std::pair{-h, -h}, std::pair{-h, h}, std::pair{h, h}, std::pair{h, -h}}) {
     mesh.positions.emplace_back(x + dx, 0.0f, z + dz);
     mesh.normals.emplace_back(0.0f, 1.0f, 0.0f);
-    mesh.uvs.emplace_back((dx + h) / size, (dz + h) / size);
+    mesh.uvs.emplace_back(x + dx, z + dz);
   }
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}};  // counter-clockwise seen from above
   mesh.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
@@ -134,6 +134,7 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
   Material grass;
   grass.colour = Eigen::Vector3f(0.36f, 0.55f, 0.30f);
   grass.specular = 0.0f;
+  grass.receives_shadow = true;
   scene.materials = {cloth_front, cloth_back, metal, gold, grass};
 
   Mesh flag;
@@ -145,6 +146,7 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
   finial.front_material = 3;
   Mesh ground = GroundMesh(0.75f, 0.0f, 400.0f);
   ground.front_material = 4;
+  flag.casts_shadow = pole.casts_shadow = finial.casts_shadow = true;
   scene.meshes = {flag, pole, finial, ground};
 
   // Fine enough that a flag filling a 1920 x 1080 picture is still minified or near it: the
@@ -174,6 +176,7 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
   const Light far_sky = diffuse_light({-0.3f, 0.35f, -0.88f}, {0.55f, 0.55f, 0.58f});
   scene.lighting.ambient = Eigen::Vector3f(0.2f, 0.22f, 0.26f);
   scene.lighting.lights = {sun, fill, from_sky, from_ground, far_sky};
+  scene.shadow_light = 0;
   return scene;
 }
 

@@ -20,6 +20,7 @@ struct Mesh {
   std::vector<std::array<uint32_t, 2>> edges;      ///< wireframe: every edge once, first -> second
   int front_material = 0;                          ///< index into RenderScene::materials
   int back_material = -1;                          ///< -1: back faces are culled
+  bool casts_shadow = false;                       ///< on the ground, in the shadow light (ground_shadow.hpp)
 };
 
 struct RenderScene {
@@ -27,6 +28,7 @@ struct RenderScene {
   std::vector<Material> materials;
   Texture pattern;  ///< for materials with `patterned`
   Lighting lighting;
+  int shadow_light = -1;  ///< the directional light whose shadow the ground receives; -1: none
   Eigen::Vector3f sky_top{0.33f, 0.55f, 0.85f};      ///< background at the image's top, RGB 0..1
   Eigen::Vector3f sky_horizon{0.80f, 0.87f, 0.94f};  ///< background at its bottom
 };
@@ -41,11 +43,11 @@ void UpdateFlagMesh(int cols, int rows, const float* x, const float* y, const fl
 Mesh CylinderMesh(const Eigen::Vector3f& base, float radius, float height, int segments);
 /// A sphere of `segments` around and segments / 2 from pole to pole.
 Mesh SphereMesh(const Eigen::Vector3f& centre, float radius, int segments);
-/// A square of side `size` on the plane y = 0, centred at (x, z).
+/// A square of side `size` on the plane y = 0, centred at (x, z); its (u, v) are (x, z).
 Mesh GroundMesh(float x, float z, float size);
 
-/// The flag (empty until UpdateFlagMesh), its pole and finial, the ground, sun and fill light.
-/// Mesh 0 is the flag.
+/// The flag (empty until UpdateFlagMesh), its pole and finial, the ground, sun and fill light;
+/// the flag, the pole and the finial cast a shadow in the sun on the ground. Mesh 0 is the flag.
 RenderScene DefaultRenderScene(float pole_height, float pole_radius = 0.03f,
                                FlagDesign design = FlagDesign::kNordicCross);
 

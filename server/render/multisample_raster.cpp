@@ -211,14 +211,7 @@ void RasterizeMultisampled(const TriangleSetup& t, const ShadeContext& context, 
       rows.Fill(shader, y_first, y_last, whole);
     }
   };
-  const Material& material = context.scene->materials[t.material];
-  if (context.mode == ShadingMode::kPhong) {
-    fill(PhongShader(t, context, planes));
-  } else if (material.patterned) {
-    fill(BlockShader<true>(planes, material, context.pattern, context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
-  } else {
-    fill(BlockShader<false>(planes, material, context.pattern));
-  }
+  WithShader(t, context, planes, x_first, y_first, x_last, y_last, fill);
 }
 
 }  // namespace flagsim::render

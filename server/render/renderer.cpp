@@ -116,6 +116,7 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   for (std::vector<uint32_t>& bin : line_bins_) bin.clear();
   VertexStage(scene, clip_from_world, options.mode, options.threads);
   pattern_.Assign(scene.pattern);
+  shadow_.Cast(scene);
   SkyRows(scene, camera.height, &sky_rows_);
   ShadeContext context;
   context.scene = &scene;
@@ -123,6 +124,7 @@ void Renderer::Render(const RenderScene& scene, const Camera& camera, const Rend
   context.mode = options.mode;
   context.eye = eye_;
   context.samples = PatternOf(options.antialiasing);
+  context.shadow = &shadow_;
   std::vector<ChunkWork> work;
   if (options.mode == ShadingMode::kWireframe) {
     LineStage(scene, camera.width, camera.height, options.tile_size, options.antialiasing != Antialiasing::kOff);

@@ -1,5 +1,6 @@
 // One frame, from meshes to pixels:
 //
+//   shadow           the casting meshes' shadow on the ground in the sun (ground_shadow.hpp)
 //   vertex stage     world -> clip space; per-vertex lighting (front and back) for Gouraud
 //   primitives       flat: per-face lighting; clip (near, far, guard band); project; facing:
 //                    cull or pick the back material; snap and set up (triangle_setup.hpp);
@@ -83,6 +84,7 @@ class Renderer {
   size_t triangles_drawn_ = 0;
   std::vector<LineSetup> lines_;
   FilteredTexture pattern_;         ///< the scene's, filtered, for the tiles
+  GroundShadow shadow_;             ///< the scene's casters' on the ground, this frame
   std::vector<uint32_t> sky_rows_;  ///< the sky's colour on each row of the image
   int tiles_x_ = 0, tiles_y_ = 0;
   std::vector<std::vector<uint32_t>> line_bins_;  ///< per tile: indices into lines_

@@ -22,6 +22,9 @@ struct Material {
   float diffuse = 0.8f;                      ///< kd
   float specular = 0.2f;                     ///< ks
   float shininess = 24.0f;                   ///< Blinn-Phong exponent
+  /// Shadowed by the meshes that cast (ground_shadow.hpp): the ground only, whose (u, v) are
+  /// its (x, z) in metres.
+  bool receives_shadow = false;
 };
 
 struct Light {

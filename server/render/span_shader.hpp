@@ -5,8 +5,10 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
+#include "server/render/ground_shadow.hpp"
 #include "server/render/mesh.hpp"
 #include "server/render/shading.hpp"
 #include "server/render/texture_filter.hpp"
@@ -52,19 +54,34 @@ struct Planes {
   alignas(32) float dy[kCount] = {};
 };
 
+/// What a material's surface adds to the interpolated light.
+enum class Surface {
+  kPlain,      ///< its colour
+  kPatterned,  ///< its colour times the pattern, filtered at (u, v)
+  kShadowed,   ///< its colour, in the ground's shadow at (u, v) = (x, z) (ground_shadow.hpp)
+};
+
 /// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
 /// base the material's colour, times the pattern filtered at (u, v) (channels 6, 7) and the
-/// triangle's level of detail when `kPatterned` (texture_filter.hpp). Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block
-/// of kSpanLanes pixels at once.
-template <bool kPatterned>
+/// triangle's level of detail when kPatterned (texture_filter.hpp); kShadowed takes the sun's
+/// share of D and S away in the shadow s at (u, v): base * (D - s Dsun) + S (1 - s).
+/// Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block of kSpanLanes
+/// pixels at once.
+template <Surface kSurface>
 class BlockShader {
  public:
-  static constexpr int kChannels = kPatterned ? 8 : 6;
+  static constexpr int kChannels = kSurface == Surface::kPlain ? 6 : 8;
 
-  /// `pattern` is read only when kPatterned, at level of detail `lod`.
-  BlockShader(const Planes& planes, const Material& material, const FilteredTexture* pattern, float lod = 0)
+  /// The context's pattern is read only when kPatterned, at level of detail `lod`; its shadow
+  /// only when kShadowed.
+  BlockShader(const Planes& planes, const Material& material, const ShadeContext& context, float lod = 0)
       : planes_(planes), base_{material.colour[0], material.colour[1], material.colour[2]} {
-    if constexpr (kPatterned) sampler_ = pattern->SamplerAt(lod);
+    if constexpr (kSurface == Surface::kPatterned) sampler_ = context.pattern->SamplerAt(lod);
+    if constexpr (kSurface == Surface::kShadowed) {
+      shadow_ = context.shadow;
+      const Eigen::Vector3f sun = shadow_->SunDiffuse(material);
+      for (int j = 0; j < 3; ++j) sun_[j] = sun[j];
+    }
   }
 
   /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
@@ -82,11 +99,19 @@ class BlockShader {
         c[k] = (at(Planes::kChannel + k, i) + step[Planes::kChannel + k] * fx[i]) * w;
       }
       float base[3] = {base_[0], base_[1], base_[2]};
-      if constexpr (kPatterned) {
+      if constexpr (kSurface == Surface::kPatterned) {
         float texel[3];
         sampler_.Sample(c[6], c[7], texel);
 #pragma GCC unroll 3
         for (int j = 0; j < 3; ++j) base[j] *= texel[j];
+      }
+      if constexpr (kSurface == Surface::kShadowed) {
+        const float shadow = shadow_->At(c[6], c[7]);
+#pragma GCC unroll 3
+        for (int j = 0; j < 3; ++j) {
+          c[j] -= shadow * sun_[j];
+          c[3 + j] *= 1.0f - shadow;
+        }
       }
       colour[i] = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
                            ToByte(base[2] * c[2] + c[5]));
@@ -96,7 +121,9 @@ class BlockShader {
  private:
   const Planes& planes_;
   float base_[3];
-  FilteredTexture::Sampler sampler_;  ///< kPatterned: the triangle's levels
+  FilteredTexture::Sampler sampler_;       ///< kPatterned: the triangle's levels
+  const GroundShadow* shadow_ = nullptr;  ///< kShadowed
+  float sun_[3] = {};                      ///< kShadowed: Dsun
 };
 
 /// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel, with the
@@ -107,6 +134,8 @@ class PhongShader {
   PhongShader(const TriangleSetup& t, const ShadeContext& context, const Planes& planes)
       : t_(t), context_(context), planes_(planes), material_(context.scene->materials[t.material]) {
     if (material_.patterned) sampler_ = context.pattern->SamplerAt(context.pattern->LevelOfDetail(t.uv_area_per_pixel));
+    shadowed_ = material_.receives_shadow && context.shadow != nullptr && !context.shadow->empty();
+    if (shadowed_) sun_ = context.shadow->SunDiffuse(material_);
   }
 
   /// The colour fx pixels from the box's first column on a row where plane k is at(k) there.
@@ -126,7 +155,13 @@ class PhongShader {
       sampler_.Sample(c[6], c[7], texel);
       base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]));
     }
-    const Eigen::Vector3f colour = base.cwiseProduct(shade.diffuse) + shade.specular;
+    Eigen::Vector3f diffuse = shade.diffuse, specular = shade.specular;
+    if (shadowed_) {  // as BlockShader's kShadowed, at the ground point (x, z) = (u, v)
+      const float shadow = context_.shadow->At(c[0], c[2]);
+      diffuse -= shadow * sun_;
+      specular *= 1.0f - shadow;
+    }
+    const Eigen::Vector3f colour = base.cwiseProduct(diffuse) + specular;
     return PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
   }
 
@@ -142,6 +177,49 @@ class PhongShader {
   const Planes& planes_;
   const Material& material_;
   FilteredTexture::Sampler sampler_;  ///< when patterned: the triangle's levels
+  bool shadowed_ = false;             ///< in the ground's shadow
+  Eigen::Vector3f sun_ = Eigen::Vector3f::Zero();  ///< when shadowed: Dsun
 };
+
+/// Whether a receiving triangle's pixels [x0, x1] x [y0, y1] may show ground in shadow: the
+/// (u, v) = (x, z) at the box's corners (channels 6, 7 over 1 / w), whose box holds all the box
+/// shows of a plane.
+inline bool BoxMayBeShadowed(const TriangleSetup& t, const GroundShadow& shadow, int x0, int y0, int x1, int y1) {
+  if (shadow.empty()) return false;
+  float low[2] = {INFINITY, INFINITY}, high[2] = {-INFINITY, -INFINITY};
+  for (const int x : {x0, x1}) {
+    for (const int y : {y0, y1}) {
+      const float fx = float(x - t.min_x), fy = float(y - t.min_y);
+      const auto at = [&](const Plane& p) { return p.origin + p.dx * fx + p.dy * fy; };
+      const float w = 1.0f / at(t.inverse_w);
+      for (int k = 0; k < 2; ++k) {
+        const float value = at(t.channels[6 + k]) * w;
+        low[k] = std::min(low[k], value);
+        high[k] = std::max(high[k], value);
+      }
+    }
+  }
+  return shadow.Touches(low[0], low[1], high[0], high[1]);
+}
+
+/// Calls fill(shader) with the shader for triangle t in the context's mode, over the box of
+/// pixels [x0, x1] x [y0, y1] of a tile: BlockShader for flat and Gouraud, of the material's
+/// surface (kShadowed only where the box's ground may be in shadow: its corners' (u, v) span
+/// the ground it shows, a projective image of the box), PhongShader for Phong.
+template <class Fill>
+void WithShader(const TriangleSetup& t, const ShadeContext& context, const Planes& planes, int x0, int y0, int x1,
+                int y1, const Fill& fill) {
+  const Material& material = context.scene->materials[t.material];
+  if (context.mode == ShadingMode::kPhong) {
+    fill(PhongShader(t, context, planes));
+  } else if (material.patterned) {
+    fill(BlockShader<Surface::kPatterned>(planes, material, context, context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
+  } else if (material.receives_shadow && context.shadow != nullptr &&
+             BoxMayBeShadowed(t, *context.shadow, x0, y0, x1, y1)) {
+    fill(BlockShader<Surface::kShadowed>(planes, material, context));
+  } else {
+    fill(BlockShader<Surface::kPlain>(planes, material, context));
+  }
+}
 
 }  // namespace flagsim::render

@@ -18,8 +18,8 @@ namespace {
 /// the depth test, then where any pixel of the block is in front, the block's colours stored
 /// to those pixels. Lanes past the span repeat its last pixel and are masked off. `at` holds
 /// the planes along the row; depth and rgbx point at the span's first pixel.
-template <bool kPatterned>
-void FillSpan(const BlockShader<kPatterned>& shader, const Planes& planes, const float at[Planes::kCount],
+template <class Shader>
+void FillSpan(const Shader& shader, const Planes& planes, const float at[Planes::kCount],
               float fx0, int n, float* depth, uint32_t* rgbx) {
   const float z_at = at[Planes::kDepth], z_step = planes.dx[Planes::kDepth];
   for (int start = 0; start < n; start += kSpanLanes, depth += kSpanLanes, rgbx += kSpanLanes) {
@@ -48,10 +48,10 @@ void FillSpan(const BlockShader<kPatterned>& shader, const Planes& planes, const
 /// pixel's place in the tile and its distance from the box's first column and row; plane k on
 /// the lane's row is origin + dy * fy, as along a row. The depth test and the stores go pixel
 /// by pixel; no pixel is in a block twice.
-template <bool kPatterned>
+template <class Shader>
 class PixelBlocks {
  public:
-  PixelBlocks(const BlockShader<kPatterned>& shader, const Planes& planes, const TriangleSetup& t,
+  PixelBlocks(const Shader& shader, const Planes& planes, const TriangleSetup& t,
               const TileTarget& target)
       : shader_(shader), planes_(planes), t_(t), target_(target) {}
 
@@ -108,7 +108,7 @@ class PixelBlocks {
   }
 
  private:
-  const BlockShader<kPatterned>& shader_;
+  const Shader& shader_;
   const Planes& planes_;
   const TriangleSetup& t_;
   const TileTarget& target_;
@@ -381,16 +381,13 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
       });
     }
   };
-  const Material& material = context.scene->materials[t.material];
-  if (context.mode == ShadingMode::kPhong) {
+  if (context.mode == ShadingMode::kPhong) {  // shaded pixel by pixel, only where in front
     const PhongShader shader(t, context, planes);
     fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
       FillSpanPhong(shader, planes, at, fx0, n, depth, rgbx);
     });
-  } else if (material.patterned) {
-    fill(BlockShader<true>(planes, material, context.pattern, context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
   } else {
-    fill(BlockShader<false>(planes, material, context.pattern));
+    WithShader(t, context, planes, x_first, y_first, x_last, y_last, fill);
   }
 }
 

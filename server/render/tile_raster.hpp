@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "server/render/framebuffer.hpp"
+#include "server/render/ground_shadow.hpp"
 #include "server/render/mesh.hpp"
 #include "server/render/sample_pattern.hpp"
 #include "server/render/shading_mode.hpp"
@@ -97,6 +98,7 @@ struct ShadeContext {
   ShadingMode mode = ShadingMode::kGouraud;
   Eigen::Vector3f eye = Eigen::Vector3f::Zero();  ///< world frame, for per-pixel lighting
   SamplePattern samples;                          ///< the target's samples (one: at the centre)
+  const GroundShadow* shadow = nullptr;           ///< for materials that receive it; none: no shadow
 };
 
 /// The sky's RGBX colour on each row of an image `height` px high: sky_top on the first row,
