@@ -132,7 +132,10 @@ std::string WriteImages(const std::string& out_dir, const Row& row, const ImageP
 /// (image size, flag grid, threads) => both renderers timed and compared, images written if asked.
 bool Measure(Row* row, const Options& options) {
   render::RenderScene scene = bench::BenchScene(row->cols, row->rows);
-  scene.shadow_light = -1;  // OpenGL's fixed function casts no shadow: neither side draws one
+  // OpenGL's fixed function casts no shadow and knows no wrapped light or sheen: neither side
+  // draws them, so that the two draw the same picture.
+  scene.shadow_light = -1;
+  for (render::Material& material : scene.materials) material.wrap = material.sheen = 0;
   render::Camera camera;
   camera.width = row->width;
   camera.height = row->height;

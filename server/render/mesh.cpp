@@ -118,11 +118,13 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
   cloth_front.colour = Eigen::Vector3f(1, 1, 1);
   cloth_front.ambient = 0.35f;
   cloth_front.diffuse = 0.75f;
-  cloth_front.specular = 0.25f;
-  cloth_front.shininess = 20;
+  cloth_front.specular = 0.08f;  // a dim, broad highlight: cloth, not metal
+  cloth_front.shininess = 8;
+  cloth_front.wrap = 0.3f;
+  cloth_front.sheen = 0.35f;
   Material cloth_back = cloth_front;  // the same cloth seen through: a little duller
   cloth_back.diffuse = 0.65f;
-  cloth_back.specular = 0.12f;
+  cloth_back.specular = 0.04f;
   Material metal;
   metal.colour = Eigen::Vector3f(0.72f, 0.73f, 0.76f);
   metal.ambient = 0.3f;
