@@ -173,10 +173,10 @@ std::string GlSceneRenderer::Init(int width, int height, int samples, const rend
     return f.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   };
   if (samples > 1) {  // the resolved image: one sample a pixel, read back
-    storage(&resolved_buffer_, GL_RGBA8, 1);
+    storage(&resolved_buffer_, GL_SRGB8_ALPHA8, 1);
     if (!attach(&resolved_framebuffer_, resolved_buffer_, 0)) return "resolve framebuffer incomplete";
   }
-  storage(&colour_buffer_, GL_RGBA8, samples);
+  storage(&colour_buffer_, GL_SRGB8_ALPHA8, samples);
   storage(&depth_buffer_, GL_DEPTH_COMPONENT24, samples);
   if (!attach(&framebuffer_, colour_buffer_, depth_buffer_)) return "framebuffer incomplete";
   glDrawBuffer(GL_COLOR_ATTACHMENT0);
@@ -189,7 +189,7 @@ std::string GlSceneRenderer::Init(int width, int height, int samples, const rend
   glGenTextures(1, &pattern_texture_);
   glBindTexture(GL_TEXTURE_2D, pattern_texture_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, pattern.width, pattern.height, 0, GL_RGB, GL_UNSIGNED_BYTE,
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8, pattern.width, pattern.height, 0, GL_RGB, GL_UNSIGNED_BYTE,
                pattern.rgb.data());
   f.GenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
@@ -205,7 +205,9 @@ std::string GlSceneRenderer::Init(int width, int height, int samples, const rend
 void GlSceneRenderer::Render(const render::RenderScene& scene, const render::Camera& camera,
                              std::vector<uint8_t>* rgba) {
   glClear(GL_DEPTH_BUFFER_BIT);  // the sky covers every pixel's colour
+  glDisable(GL_FRAMEBUFFER_SRGB);  // the sky's colours are sRGB already, as flagsim's rows are
   DrawSky(scene);
+  glEnable(GL_FRAMEBUFFER_SRGB);  // light is linear: encoded as written, blended and resolved in light
   LoadCamera(camera);
   SetLights(scene.lighting);
   glEnable(GL_LIGHTING);

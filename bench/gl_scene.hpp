@@ -6,8 +6,10 @@
 //   lights     ambient 0, diffuse = specular = the light's colour; w = 0 directional, 1 point
 //   model      the scene's ambient, local viewer, two-sided, separate specular colour
 //   pattern    GL_MODULATE, trilinear (GL_LINEAR_MIPMAP_LINEAR), rows uploaded as stored (t = v,
-//              row 0 at v = 0)
+//              row 0 at v = 0), an sRGB texture (decoded to linear light when sampled)
 //   samples    1, or n per pixel (multisampled renderbuffers, resolved by a blit before reading)
+//   light      linear: sRGB renderbuffers with GL_FRAMEBUFFER_SRGB, so what is written is encoded
+//              as flagsim's tiles encode it (srgb.hpp); the sky is written as the sRGB it is
 //
 // so that per vertex GL computes colour * D (primary colour) and S (secondary colour), and per
 // pixel texel * primary + secondary: flagsim's base * D + S. The sky is a full-screen quad drawn
@@ -42,7 +44,7 @@ class GlContext {
   void* context_ = nullptr;  ///< EGLContext
 };
 
-/// A width x height framebuffer object (RGBA8 colour, 24-bit depth, one or more samples a
+/// A width x height framebuffer object (sRGB colour, 24-bit depth, one or more samples a
 /// pixel) and the scene's pattern as a texture, drawn into with fixed-function lighting. Lives
 /// inside a current GlContext.
 class GlSceneRenderer {
@@ -70,10 +72,10 @@ class GlSceneRenderer {
   int height_ = 0;                ///< px
   int samples_ = 1;               ///< per pixel
   unsigned framebuffer_ = 0;      ///< GL framebuffer object drawn into
-  unsigned colour_buffer_ = 0;    ///< GL renderbuffer, RGBA8, samples_ a pixel
+  unsigned colour_buffer_ = 0;    ///< GL renderbuffer, SRGB8_ALPHA8, samples_ a pixel
   unsigned depth_buffer_ = 0;     ///< GL renderbuffer, DEPTH_COMPONENT24, samples_ a pixel
   unsigned resolved_framebuffer_ = 0;  ///< multisampled: the resolved image, read back
-  unsigned resolved_buffer_ = 0;       ///< its GL renderbuffer, RGBA8
+  unsigned resolved_buffer_ = 0;       ///< its GL renderbuffer, SRGB8_ALPHA8
   unsigned pattern_texture_ = 0;  ///< GL texture, RGB8
 };
 

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "server/render/srgb.hpp"
+
 namespace flagsim::bench {
 
 /// draw() `warmup` times untimed, then `frames` times timed => median ms per call.
@@ -26,22 +28,25 @@ double MedianMs(int warmup, int frames, Draw draw) {
   return times.size() % 2 == 1 ? times[middle] : 0.5 * (times[middle - 1] + times[middle]);
 }
 
-/// An RGB8 image `large_width` px wide => one `factor` times smaller each way, each factor x
-/// factor block of samples averaged per channel, rounded to nearest (a supersampled reference).
+/// An sRGB8 image `large_width` px wide => one `factor` times smaller each way, each factor x
+/// factor block of samples averaged per channel in light (decoded, averaged, encoded: as the
+/// renderer resolves its samples), a supersampled reference.
 inline std::vector<uint8_t> BoxFilter(const std::vector<uint8_t>& large, int large_width, int factor) {
   const int width = large_width / factor, height = int(large.size() / 3 / size_t(large_width)) / factor;
   const int samples = factor * factor;
   std::vector<uint8_t> small(size_t(width) * height * 3);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      int sums[3] = {0, 0, 0};
+      uint32_t sums[3] = {0, 0, 0};
       for (int sy = 0; sy < factor; ++sy) {
         for (int sx = 0; sx < factor; ++sx) {
           const uint8_t* sample = &large[(size_t(y * factor + sy) * large_width + size_t(x * factor + sx)) * 3];
-          for (int k = 0; k < 3; ++k) sums[k] += sample[k];
+          for (int k = 0; k < 3; ++k) sums[k] += render::kSrgbDecode[sample[k]];
         }
       }
-      for (int k = 0; k < 3; ++k) small[(size_t(y) * width + x) * 3 + k] = uint8_t((sums[k] + samples / 2) / samples);
+      for (int k = 0; k < 3; ++k) {
+        small[(size_t(y) * width + x) * 3 + k] = uint8_t(render::EncodeSrgb16((sums[k] + samples / 2) / samples));
+      }
     }
   }
   return small;

@@ -23,7 +23,10 @@ set(long_tests
   Simulation.TheGuardKeepsStableIntegratorsSoundAtTheLargestStep
   Bending.TheBreezesCurvatureDoesNotGrowAsTheGridRefines
   FrameDefect.TheEstimateTracksTheMeasuredErrorWithinAFactorOfTwo
-  AutoModel.MeetsTheBudgetAtThePresetsViewAndCostsFarLessTenTimesFarther)
+  AutoModel.MeetsTheBudgetAtThePresetsViewAndCostsFarLessTenTimesFarther
+  ModelGovernor.SwitchesAreJournaledAndReplayBitForBit
+  InputsLog.AServersOwnRecordReplaysBitForBit
+  InputsLog.AServerResumedFromItsRecordStepsOnAsTheOriginal)
 
 foreach(executable IN LISTS unit_executables)  # every flagsim_test (tests/CMakeLists.txt)
   foreach(test IN LISTS ${executable}_TESTS)

@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "server/render/srgb.hpp"
+
 namespace flagsim::render {
 
 constexpr int kPatternWidth = 960, kPatternHeight = 640;  ///< texels of the built-in designs
@@ -111,6 +113,15 @@ Mesh GroundMesh(float x, float z, float size) {
   return mesh;
 }
 
+namespace {
+
+/// A colour as a picture shows it (sRGB, 0..1) => the linear reflectance the lighting takes.
+Eigen::Vector3f FromSrgb(float r, float g, float b) {
+  return Eigen::Vector3f(SrgbToLinear(r), SrgbToLinear(g), SrgbToLinear(b));
+}
+
+}  // namespace
+
 RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign design) {
   RenderScene scene;
   Material cloth_front;
@@ -118,23 +129,23 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
   cloth_front.colour = Eigen::Vector3f(1, 1, 1);
   cloth_front.ambient = 0.35f;
   cloth_front.diffuse = 0.75f;
-  cloth_front.specular = 0.08f;  // a dim, broad highlight: cloth, not metal
+  cloth_front.specular = 0.05f;  // a dim, broad highlight: cloth, not metal
   cloth_front.shininess = 8;
   cloth_front.wrap = 0.3f;
-  cloth_front.sheen = 0.35f;
+  cloth_front.sheen = 0.1f;
   Material cloth_back = cloth_front;  // the same cloth seen through: a little duller
   cloth_back.diffuse = 0.65f;
-  cloth_back.specular = 0.04f;
+  cloth_back.specular = 0.025f;
   Material metal;
-  metal.colour = Eigen::Vector3f(0.72f, 0.73f, 0.76f);
+  metal.colour = FromSrgb(0.72f, 0.73f, 0.76f);
   metal.ambient = 0.3f;
   metal.diffuse = 0.6f;
   metal.specular = 0.8f;
   metal.shininess = 60;
   Material gold = metal;
-  gold.colour = Eigen::Vector3f(0.85f, 0.68f, 0.25f);
+  gold.colour = FromSrgb(0.85f, 0.68f, 0.25f);
   Material grass;
-  grass.colour = Eigen::Vector3f(0.36f, 0.55f, 0.30f);
+  grass.colour = FromSrgb(0.36f, 0.55f, 0.30f);
   grass.specular = 0.0f;
   grass.receives_shadow = true;
   scene.materials = {cloth_front, cloth_back, metal, gold, grass};
@@ -157,11 +168,11 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
   Light sun;
   sun.kind = Light::kDirectional;
   sun.vector = Eigen::Vector3f(0.4f, 0.8f, 0.6f).normalized();
-  sun.colour = Eigen::Vector3f(0.95f, 0.92f, 0.85f);
+  sun.colour = Eigen::Vector3f(1.0f, 0.97f, 0.9f);
   Light fill;
   fill.kind = Light::kPoint;
   fill.vector = Eigen::Vector3f(3.0f, 2.5f, 5.0f);
-  fill.colour = Eigen::Vector3f(0.25f, 0.25f, 0.3f);
+  fill.colour = Eigen::Vector3f(0.12f, 0.12f, 0.15f);
   // The sky and the ground light the scene from every side: the sky's blue from above, the
   // grass's green from below, and the bright sky opposite the sun; none of them makes
   // highlights. A surface turned from the sun still reads (a hemisphere light in three
@@ -173,10 +184,10 @@ RenderScene DefaultRenderScene(float pole_height, float pole_radius, FlagDesign 
     light.specular = false;
     return light;
   };
-  const Light from_sky = diffuse_light({0, 1, 0}, {0.12f, 0.14f, 0.18f});
-  const Light from_ground = diffuse_light({0, -1, 0}, {0.10f, 0.13f, 0.08f});
-  const Light far_sky = diffuse_light({-0.3f, 0.35f, -0.88f}, {0.55f, 0.55f, 0.58f});
-  scene.lighting.ambient = Eigen::Vector3f(0.2f, 0.22f, 0.26f);
+  const Light from_sky = diffuse_light({0, 1, 0}, {0.07f, 0.08f, 0.11f});
+  const Light from_ground = diffuse_light({0, -1, 0}, {0.05f, 0.07f, 0.04f});
+  const Light far_sky = diffuse_light({-0.3f, 0.35f, -0.88f}, {0.12f, 0.13f, 0.16f});
+  scene.lighting.ambient = Eigen::Vector3f(0.06f, 0.07f, 0.09f);
   scene.lighting.lights = {sun, fill, from_sky, from_ground, far_sky};
   scene.shadow_light = 0;
   return scene;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "server/parallel/worker_pool.hpp"
+#include "server/render/srgb.hpp"
 #include "server/render/wu_line.hpp"
 
 namespace flagsim::render {
@@ -242,10 +243,10 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height, int ti
     for (const auto& [ia, ib] : mesh.edges) {
       Eigen::Vector4f a = vertices_[m][ia].clip, b = vertices_[m][ib].clip;
       if (!ClipLine(&a, &b)) continue;
-      Eigen::Vector3f colour = material.colour;
+      Eigen::Vector3f colour = material.colour;  // linear light, encoded below
       if (material.patterned) {
         const uint8_t* texel = scene.pattern.Sample(mesh.uvs[ia][0], mesh.uvs[ia][1]);
-        colour = colour.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]) / 255.0f);
+        for (int k = 0; k < 3; ++k) colour[k] *= SrgbToLinear(texel[k] / 255.0f);
       }
       LineSetup line;
       const auto to_pixel = [&](const Eigen::Vector4f& v, float* fx, float* fy, int* x, int* y, float* z) {
@@ -257,8 +258,7 @@ void Renderer::LineStage(const RenderScene& scene, int width, int height, int ti
       };
       to_pixel(a, &line.fx0, &line.fy0, &line.x0, &line.y0, &line.z0);
       to_pixel(b, &line.fx1, &line.fy1, &line.x1, &line.y1, &line.z1);
-      for (int k = 0; k < 3; ++k)
-        line.rgb[k] = static_cast<uint8_t>(std::clamp(colour[k], 0.0f, 1.0f) * 255 + 0.5f);
+      for (int k = 0; k < 3; ++k) line.rgb[k] = static_cast<uint8_t>(EncodeSrgb(colour[k]));
       lines_.push_back(line);
     }
   }

@@ -11,6 +11,7 @@
 #include "server/render/ground_shadow.hpp"
 #include "server/render/mesh.hpp"
 #include "server/render/shading.hpp"
+#include "server/render/srgb.hpp"
 #include "server/render/texture_filter.hpp"
 #include "server/render/tile_raster.hpp"
 #include "server/render/triangle_setup.hpp"
@@ -61,7 +62,8 @@ enum class Surface {
   kShadowed,   ///< its colour, in the ground's shadow at (u, v) = (x, z) (ground_shadow.hpp)
 };
 
-/// Gouraud and flat: colour = base * D + S with D, S the interpolated light (channels 0-5) and
+/// Gouraud and flat: colour = base * D + S (linear light, encoded to sRGB bytes) with D, S the
+/// interpolated light (channels 0-5) and
 /// base the material's colour, times the pattern filtered at (u, v) (channels 6, 7) and the
 /// triangle's level of detail when kPatterned (texture_filter.hpp); kShadowed takes the sun's
 /// share of D and S away in the shadow s at (u, v): base * (D - s Dsun) + S (1 - s).
@@ -113,8 +115,8 @@ class BlockShader {
           c[3 + j] *= 1.0f - shadow;
         }
       }
-      colour[i] = PackRgbx(ToByte(base[0] * c[0] + c[3]), ToByte(base[1] * c[1] + c[4]),
-                           ToByte(base[2] * c[2] + c[5]));
+      colour[i] = PackRgbx(EncodeSrgb(base[0] * c[0] + c[3]), EncodeSrgb(base[1] * c[1] + c[4]),
+                           EncodeSrgb(base[2] * c[2] + c[5]));
     }
   }
 
@@ -162,7 +164,7 @@ class PhongShader {
       specular *= 1.0f - shadow;
     }
     const Eigen::Vector3f colour = base.cwiseProduct(diffuse) + specular;
-    return PackRgbx(ToByte(colour[0]), ToByte(colour[1]), ToByte(colour[2]));
+    return PackRgbx(EncodeSrgb(colour[0]), EncodeSrgb(colour[1]), EncodeSrgb(colour[2]));
   }
 
   /// BlockShader's interface: a block of pixels at fx[i].

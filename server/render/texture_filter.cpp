@@ -6,10 +6,10 @@
 namespace flagsim::render {
 namespace {
 
-uint32_t Pack(uint32_t r, uint32_t g, uint32_t b) { return r | g << 8 | b << 16; }
-uint32_t Channel(uint32_t texel, int k) { return texel >> (8 * k) & 0xff; }
+uint64_t Pack(uint64_t r, uint64_t g, uint64_t b) { return r | g << 16 | b << 32; }
+uint64_t Channel(uint64_t texel, int k) { return texel >> (16 * k) & 0xffff; }
 
-/// Level k + 1 from level k: each texel the rounded mean of a 2 x 2 block.
+/// Level k + 1 from level k: each texel the rounded mean of a 2 x 2 block (of light).
 FilteredTexture::Level HalfOf(const FilteredTexture::Level& level) {
   FilteredTexture::Level half;
   half.width = std::max(1, level.width / 2);
@@ -20,8 +20,8 @@ FilteredTexture::Level HalfOf(const FilteredTexture::Level& level) {
   };
   for (int y = 0; y < half.height; ++y) {
     for (int x = 0; x < half.width; ++x) {
-      const uint32_t block[4] = {at(2 * x, 2 * y), at(2 * x + 1, 2 * y), at(2 * x, 2 * y + 1), at(2 * x + 1, 2 * y + 1)};
-      uint32_t mean[3];
+      const uint64_t block[4] = {at(2 * x, 2 * y), at(2 * x + 1, 2 * y), at(2 * x, 2 * y + 1), at(2 * x + 1, 2 * y + 1)};
+      uint64_t mean[3];
       for (int k = 0; k < 3; ++k) {
         mean[k] = (Channel(block[0], k) + Channel(block[1], k) + Channel(block[2], k) + Channel(block[3], k) + 2) / 4;
       }
@@ -45,7 +45,8 @@ void FilteredTexture::Assign(const Texture& texture) {
   base.height = texture.height;
   base.texels.resize(size_t(base.width) * base.height);
   for (size_t i = 0; i < base.texels.size(); ++i) {
-    base.texels[i] = Pack(texture.rgb[3 * i], texture.rgb[3 * i + 1], texture.rgb[3 * i + 2]);
+    base.texels[i] = Pack(kSrgbDecode[texture.rgb[3 * i]], kSrgbDecode[texture.rgb[3 * i + 1]],
+                          kSrgbDecode[texture.rgb[3 * i + 2]]);
   }
   levels_.push_back(std::move(base));
   while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(HalfOf(levels_.back()));

@@ -8,7 +8,9 @@
 //   detail      rho^2 = (the triangle's area in texels) / (its area in pixels)
 //   bilinear    texel centres at ((i + 1/2) / width, (j + 1/2) / height), clamped at the edges
 //
-// Texels are RGBX words (bytes R, G, B, 0), as the tiles store pixels.
+// The texture's sRGB bytes are decoded once, to 16-bit linear light (srgb.hpp): levels are means
+// of light and filtering blends light, as a GPU does with an sRGB texture. A texel is one 64-bit
+// word: R, G, B and 0 in 16 bits each, 0 .. kLinearOne.
 #pragma once
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "server/render/pattern.hpp"
+#include "server/render/srgb.hpp"
 
 namespace flagsim::render {
 
@@ -24,7 +27,7 @@ class FilteredTexture {
  public:
   struct Level {
     int width = 0, height = 0;
-    std::vector<uint32_t> texels;  ///< row-major, top row first
+    std::vector<uint64_t> texels;  ///< row-major, top row first; 16-bit linear R, G, B, 0
   };
 
   /// The levels of `texture`; nothing to do if they are from the same bytes already.
@@ -40,15 +43,15 @@ class FilteredTexture {
     const Level* first = nullptr;
     const Level* second = nullptr;  ///< the same level where there is no next one
     float blend = 0;
-    /// The filtered colour at (u, v), each channel 0..1. Inline and branch-free: the tiles call it
-    /// per pixel in loops the compiler vectorises.
+    /// The filtered colour at (u, v), each channel 0..1 of linear light. Inline and branch-free:
+    /// the tiles call it per pixel in loops the compiler vectorises.
     void Sample(float u, float v, float rgb[3]) const;
   };
   /// The sampler for `lod`; the texture must have levels (Assign a texture of some size first).
   Sampler SamplerAt(float lod) const;
 
-  /// The filtered colour at (u, v) and level of detail `lod`, each channel 0..1 (white when the
-  /// texture is empty).
+  /// The filtered colour at (u, v) and level of detail `lod`, each channel 0..1 of linear light
+  /// (white when the texture is empty).
   void Sample(float u, float v, float lod, float rgb[3]) const;
 
   const std::vector<Level>& levels() const { return levels_; }
@@ -59,19 +62,19 @@ class FilteredTexture {
   int source_width_ = 0, source_height_ = 0;
 };
 
-/// Bilinear within `level` at (u, v), each channel 0..255.
+/// Bilinear within `level` at (u, v), each channel 0..kLinearOne.
 inline void SampleBilinear(const FilteredTexture::Level& level, float u, float v, float rgb[3]) {
   const float x = u * float(level.width) - 0.5f, y = v * float(level.height) - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
   const float tx = x - fx, ty = y - fy;
   const int x0 = std::clamp(int(fx), 0, level.width - 1), x1 = std::clamp(int(fx) + 1, 0, level.width - 1);
   const int y0 = std::clamp(int(fy), 0, level.height - 1), y1 = std::clamp(int(fy) + 1, 0, level.height - 1);
-  const uint32_t* row0 = &level.texels[size_t(y0) * level.width];
-  const uint32_t* row1 = &level.texels[size_t(y1) * level.width];
-  const uint32_t a = row0[x0], b = row0[x1], c = row1[x0], d = row1[x1];
+  const uint64_t* row0 = &level.texels[size_t(y0) * level.width];
+  const uint64_t* row1 = &level.texels[size_t(y1) * level.width];
+  const uint64_t a = row0[x0], b = row0[x1], c = row1[x0], d = row1[x1];
   for (int k = 0; k < 3; ++k) {
-    const float ta = float(a >> (8 * k) & 0xff), tb = float(b >> (8 * k) & 0xff);
-    const float tc = float(c >> (8 * k) & 0xff), td = float(d >> (8 * k) & 0xff);
+    const float ta = float(a >> (16 * k) & 0xffff), tb = float(b >> (16 * k) & 0xffff);
+    const float tc = float(c >> (16 * k) & 0xffff), td = float(d >> (16 * k) & 0xffff);
     const float top = ta + (tb - ta) * tx, bottom = tc + (td - tc) * tx;
     rgb[k] = top + (bottom - top) * ty;
   }
@@ -81,7 +84,7 @@ inline void FilteredTexture::Sampler::Sample(float u, float v, float rgb[3]) con
   float next[3];
   SampleBilinear(*first, u, v, rgb);
   SampleBilinear(*second, u, v, next);
-  for (int k = 0; k < 3; ++k) rgb[k] = (rgb[k] + (next[k] - rgb[k]) * blend) * (1.0f / 255);
+  for (int k = 0; k < 3; ++k) rgb[k] = (rgb[k] + (next[k] - rgb[k]) * blend) * (1.0f / float(kLinearOne));
 }
 
 inline FilteredTexture::Sampler FilteredTexture::SamplerAt(float lod) const {

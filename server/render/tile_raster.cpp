@@ -10,6 +10,7 @@
 
 #include "server/render/multisample_raster.hpp"
 #include "server/render/span_shader.hpp"
+#include "server/render/srgb.hpp"
 
 namespace flagsim::render {
 namespace {
@@ -190,23 +191,41 @@ void FillRows(const TileTarget& target, int y_first, int y_last, Spans spans, co
   }
 }
 
-/// The mean of kSamples pixels `plane` words apart, for n pixels of a row: R and B summed in the
-/// two 16-bit halves of one word, G in another's, rounded and shifted.
+/// The mean of kSamples pixels `plane` words apart, for n pixels of a row, in light: each
+/// sample's sRGB bytes decoded to 16-bit linear, summed, divided (rounded) and encoded again.
+/// A pixel whose samples agree keeps its bytes (srgb.hpp's tables round-trip every byte), so
+/// blocks of kSpanLanes pixels whose samples all agree (inside triangles, the sky) are copied
+/// without the tables. The row has room for a block past n (kSpanLanes).
 template <int kSamples>
 void ResolveRow(const uint32_t* rgbx, size_t plane, int n, uint32_t* out) {
-  static_assert((kSamples & (kSamples - 1)) == 0 && kSamples <= 256, "a power of two, summed in 16 bits");
+  static_assert((kSamples & (kSamples - 1)) == 0, "a power of two");
   constexpr int kShift = __builtin_ctz(unsigned(kSamples));
-  constexpr uint32_t kHalf = uint32_t(kSamples / 2) * 0x00010001u;
-#pragma omp simd
-  for (int i = 0; i < n; ++i) {
-    uint32_t red_blue = 0, green = 0;
-#pragma GCC unroll 8
-    for (int k = 0; k < kSamples; ++k) {
-      const uint32_t word = rgbx[plane * size_t(k) + size_t(i)];
-      red_blue += word & 0x00FF00FFu;
-      green += (word >> 8) & 0x00FF00FFu;
+  const uint32_t* decode = kSrgbDecode.data();
+  for (int start = 0; start < n; start += kSpanLanes) {
+    const uint32_t* first = rgbx + start;
+    int differ = 0;
+#pragma omp simd reduction(| : differ)
+    for (int i = 0; i < kSpanLanes; ++i) {
+      for (int k = 1; k < kSamples; ++k) differ |= first[plane * size_t(k) + size_t(i)] != first[i];
     }
-    out[i] = (((red_blue + kHalf) >> kShift) & 0x00FF00FFu) | (((green + kHalf) >> kShift) & 0x00FF00FFu) << 8;
+    if (!differ) {
+      for (int i = 0; i < kSpanLanes; ++i) out[start + i] = first[i];
+      continue;
+    }
+#pragma omp simd
+    for (int i = 0; i < kSpanLanes; ++i) {
+      uint32_t sum[3] = {0, 0, 0};
+#pragma GCC unroll 8
+      for (int k = 0; k < kSamples; ++k) {
+        const uint32_t word = first[plane * size_t(k) + size_t(i)];
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; ++c) sum[c] += decode[(word >> (8 * c)) & 0xffu];
+      }
+      uint32_t bytes[3];
+#pragma GCC unroll 3
+      for (int c = 0; c < 3; ++c) bytes[c] = EncodeSrgb16((sum[c] + kSamples / 2) >> kShift);
+      out[start + i] = PackRgbx(bytes[0], bytes[1], bytes[2]);
+    }
   }
 }
 

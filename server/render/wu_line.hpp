@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "server/render/bresenham.hpp"
+#include "server/render/srgb.hpp"
 #include "server/render/tile_raster.hpp"
 
 namespace flagsim::render {
@@ -56,8 +57,8 @@ void WuLine(float x0, float y0, float x1, float y1, Plot plot) {
 inline int FloorDiv256(int a) { return a >= 0 ? a / 256 : -((255 - a) / 256); }
 
 /// Draws the pixels of `line` that fall in `tile` as Wu's line, each blended over every
-/// sample it is nearer than, by its coverage: colour + (line - colour) coverage, rounded (in
-/// 256ths). Its
+/// sample it is nearer than, by its coverage, in light: colour + (line - colour) coverage, in
+/// 16-bit linear with the coverage in 256ths, encoded to sRGB again. Its
 /// depth is written where it covers at least half the pixel. Tile by tile, it draws what it
 /// would draw whole.
 inline void DrawSmoothLine(const LineSetup& line, const TileTarget& target) {
@@ -71,7 +72,10 @@ inline void DrawSmoothLine(const LineSetup& line, const TileTarget& target) {
       if (!(z < depth)) continue;
       if (weight >= 128) depth = z;
       uint8_t* pixel = target.Pixel(x, y, k);
-      for (int c = 0; c < 3; ++c) pixel[c] = uint8_t(pixel[c] + FloorDiv256((int(line.rgb[c]) - pixel[c]) * weight + 128));
+      for (int c = 0; c < 3; ++c) {
+        const int under = int(kSrgbDecode[pixel[c]]), over = int(kSrgbDecode[line.rgb[c]]);
+        pixel[c] = uint8_t(EncodeSrgb16(uint32_t(under + FloorDiv256((over - under) * weight + 128))));
+      }
     }
   });
 }

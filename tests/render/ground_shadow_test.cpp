@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "server/render/renderer.hpp"
+#include "server/render/srgb.hpp"
 
 namespace flagsim::render {
 namespace {
@@ -106,8 +107,8 @@ TEST(GroundShadow, TheGroundInShadowHasNoSunlight) {
         return image.Pixel(int(pixel.x()), int(pixel.y()));
       };
       for (int k = 0; k < 3; ++k) {
-        EXPECT_NEAR(pixel_of(0.1, 0.1)[k], 255 * in_shadow[k], 1.5) << int(mode) << " channel " << k;
-        EXPECT_NEAR(pixel_of(1.5, 0.0)[k], 255 * in_sun[k], 1.5) << int(mode) << " channel " << k;
+        EXPECT_NEAR(pixel_of(0.1, 0.1)[k], EncodeSrgb(in_shadow[k]), 1) << int(mode) << " channel " << k;
+        EXPECT_NEAR(pixel_of(1.5, 0.0)[k], EncodeSrgb(in_sun[k]), 1) << int(mode) << " channel " << k;
       }
     }
   }

@@ -10,6 +10,7 @@
 
 #include "server/render/multisample_raster.hpp"
 #include "server/render/sample_pattern.hpp"
+#include "server/render/srgb.hpp"
 #include "server/render/tile_raster.hpp"
 
 namespace flagsim::render {
@@ -60,6 +61,10 @@ Framebuffer Draw(const std::vector<TriangleSetup>& triangles, Antialiasing mode,
   return framebuffer;
 }
 
+/// A pixel of which `inside` of n samples are full on (255) and the rest off (0), resolved: the
+/// mean of their light, rounded, in sRGB.
+uint32_t Resolved(int inside, int n) { return EncodeSrgb16((kLinearOne * uint32_t(inside) + uint32_t(n) / 2) / uint32_t(n)); }
+
 /// Sample k of pixel (x, y) is inside t: all three edge functions, with their top-left bias,
 /// at the sample's point in subpixels, worked out here in int64.
 bool Inside(const TriangleSetup& t, int x, int y, SampleOffset offset) {
@@ -93,8 +98,7 @@ TEST(Multisample, EachPixelShowsTheShareOfItsSamplesInside) {
           for (int x = 0; x < kSize; ++x) {
             int inside = 0;
             for (int k = 0; k < pattern.count; ++k) inside += Inside(t, x, y, pattern.offsets[k]);
-            const int expected = (255 * inside + pattern.count / 2) / pattern.count;  // the mean, rounded
-            ASSERT_EQ(image.Pixel(x, y)[0], expected)
+            ASSERT_EQ(image.Pixel(x, y)[0], Resolved(inside, pattern.count))
                 << AntialiasingNames()[int(mode)] << " trial " << trial << " tile " << tile << " at " << x << ","
                 << y;
           }
@@ -134,7 +138,7 @@ TEST(Multisample, AnEdgesCoverageIsCloseToTheAreaItLeavesInside) {
       for (int x = 0; x < kSize; ++x) {
         const double area = AreaBelow(x, y, y0, slope);
         if (area <= 0 || area >= 1) continue;
-        const double error = std::abs(image.Pixel(x, y)[0] / 255.0 - area);
+        const double error = std::abs(SrgbToLinear(image.Pixel(x, y)[0] / 255.0f) - area);  // in light
         error_sum += error;
         error_max = std::max(error_max, error);
         ++edge_pixels;
@@ -150,8 +154,7 @@ TEST(Multisample, AnEdgesCoverageIsCloseToTheAreaItLeavesInside) {
 
 TEST(Multisample, TwoTrianglesSharingAnEdgeCoverEverySampleOnce) {
   // A red and a green triangle making a square: along the diagonal each pixel's samples are
-  // red or green, never both and never the black behind, so red + green is 255 (256 where the
-  // halves round up together).
+  // red or green, never both and never the black behind: a of n red, n - a green.
   for (const Antialiasing mode : kMultisampled) {
     const int reach = PatternOf(mode).reach;
     TriangleSetup red, green;
@@ -164,8 +167,11 @@ TEST(Multisample, TwoTrianglesSharingAnEdgeCoverEverySampleOnce) {
     for (int y = 8; y < 24; ++y) {
       for (int x = 8; x < 24; ++x) {
         const uint8_t* p = image.Pixel(x, y);
-        ASSERT_GE(p[0] + p[1], 255) << AntialiasingNames()[int(mode)] << " at " << x << "," << y;
-        ASSERT_LE(p[0] + p[1], 256) << AntialiasingNames()[int(mode)] << " at " << x << "," << y;
+        const int n = PatternOf(mode).count;
+        bool shared = false;
+        for (int a = 0; a <= n; ++a) shared |= p[0] == Resolved(a, n) && p[1] == Resolved(n - a, n);
+        ASSERT_TRUE(shared) << AntialiasingNames()[int(mode)] << " at " << x << "," << y << ": " << int(p[0]) << ", "
+                            << int(p[1]);
         diagonal += p[0] > 0 && p[1] > 0;
       }
     }

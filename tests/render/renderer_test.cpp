@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "server/render/srgb.hpp"
+
 namespace flagsim::render {
 namespace {
 
@@ -157,7 +159,7 @@ TEST(Renderer, ACameraInsideTheSceneClipsAtTheNearPlane) {
 
 /// A small reference image made without the rasterizer: a lit square facing the camera covers
 /// exactly the pixels whose centres fall inside its projection, each with the colour the
-/// lighting model gives it; the rest is sky.
+/// lighting model gives it (in sRGB); the rest is sky.
 TEST(Renderer, AFacingSquareMatchesItsReferenceImage) {
   RenderScene scene;
   Material paint;
@@ -210,9 +212,10 @@ TEST(Renderer, AFacingSquareMatchesItsReferenceImage) {
       for (int x = 0; x < camera.width; ++x) {
         const bool in = x + 0.5 > low.x() && x + 0.5 < high.x() && y + 0.5 > low.y() && y + 0.5 < high.y();
         covered += in;
-        const Eigen::Vector3f expected = in ? inside : sky;
+        // The square's light is linear, encoded to sRGB; the sky's colours are sRGB already.
         for (int k = 0; k < 3; ++k) {
-          EXPECT_NEAR(framebuffer.Pixel(x, y)[k], std::lround(255 * expected[k]), 1)
+          const long expected = in ? long(EncodeSrgb(inside[k])) : std::lround(255 * sky[k]);
+          EXPECT_NEAR(framebuffer.Pixel(x, y)[k], expected, 1)
               << "mode " << int(mode) << " pixel " << x << "," << y;
         }
       }

@@ -1,7 +1,8 @@
 // The pattern's filtering, on patterns whose right answer is known: a plain texture stays plain
 // at every level, bilinear weights are exact between two texel centres and exact at each centre,
 // a level is the mean of the one above, the level of detail follows texels per pixel, and a
-// level of detail between two levels blends them linearly.
+// level of detail between two levels blends them linearly. All of it in light: the texels'
+// sRGB bytes are decoded (to 16 bits: within 1 / kLinearOne of SrgbToLinear).
 #include "server/render/texture_filter.hpp"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,8 @@
 
 namespace flagsim::render {
 namespace {
+
+constexpr float kStep = 1.0f / kLinearOne;  ///< one step of the 16-bit linear texels
 
 Texture Filled(int width, int height, const std::function<std::array<uint8_t, 3>(int, int)>& texel) {
   Texture texture;
@@ -34,9 +37,9 @@ TEST(TextureFilter, APlainTextureIsPlainAtEveryLevelAndPlace) {
     for (const float u : {-0.5f, 0.0f, 0.37f, 1.0f, 1.5f}) {
       float rgb[3];
       filtered.Sample(u, 0.61f, lod, rgb);
-      EXPECT_FLOAT_EQ(rgb[0], 51 / 255.0f);
-      EXPECT_FLOAT_EQ(rgb[1], 102 / 255.0f);
-      EXPECT_FLOAT_EQ(rgb[2], 204 / 255.0f);
+      EXPECT_NEAR(rgb[0], SrgbToLinear(51 / 255.0f), kStep);
+      EXPECT_NEAR(rgb[1], SrgbToLinear(102 / 255.0f), kStep);
+      EXPECT_NEAR(rgb[2], SrgbToLinear(204 / 255.0f), kStep);
     }
   }
 }
@@ -58,14 +61,15 @@ TEST(TextureFilter, BilinearIsExactAtTexelCentresAndLinearBetween) {
 }
 
 TEST(TextureFilter, EachLevelIsTheMeanOfTheOneAbove) {
-  FilteredTexture filtered;  // a 4 x 4 checker of 0 and 200
+  FilteredTexture filtered;  // a 4 x 4 checker of 0 and 200: of their light, not of their bytes
   filtered.Assign(Filled(4, 4, [](int x, int y) { return std::array<uint8_t, 3>{uint8_t((x + y) % 2 ? 200 : 0), 0, 0}; }));
   ASSERT_EQ(filtered.levels().size(), 3u);
-  for (const uint32_t texel : filtered.levels()[1].texels) EXPECT_EQ(texel & 0xff, 100u);
-  EXPECT_EQ(filtered.levels()[2].texels[0] & 0xff, 100u);
+  const uint64_t half = (kSrgbDecode[200] + 1) / 2;  // (0 + 200's light + 1) / 2, rounded as the levels are
+  for (const uint64_t texel : filtered.levels()[1].texels) EXPECT_EQ(texel & 0xffff, half);
+  EXPECT_EQ(filtered.levels()[2].texels[0] & 0xffff, half);
   float rgb[3];
   filtered.Sample(0.3f, 0.8f, 1, rgb);
-  EXPECT_FLOAT_EQ(rgb[0], 100 / 255.0f);
+  EXPECT_NEAR(rgb[0], 0.5f * SrgbToLinear(200 / 255.0f), kStep);
 }
 
 TEST(TextureFilter, TheLevelOfDetailFollowsTexelsPerPixel) {
@@ -81,11 +85,11 @@ TEST(TextureFilter, TheLevelOfDetailFollowsTexelsPerPixel) {
 }
 
 TEST(TextureFilter, BetweenTwoLevelsTheyBlendLinearly) {
-  FilteredTexture filtered;  // level 0: 0 | 200; level 1: 100
+  FilteredTexture filtered;  // level 0: 0 | 200's light L; level 1: L / 2
   filtered.Assign(Filled(2, 1, [](int x, int) { return std::array<uint8_t, 3>{uint8_t(200 * x), 0, 0}; }));
   float rgb[3];
-  filtered.Sample(0.25f, 0.5f, 0.25f, rgb);  // 0 at level 0, 100 at level 1
-  EXPECT_NEAR(rgb[0] * 255, 25, 1e-4);
+  filtered.Sample(0.25f, 0.5f, 0.25f, rgb);  // 0 at level 0, L / 2 at level 1: a quarter of the way
+  EXPECT_NEAR(rgb[0], 0.25f * 0.5f * SrgbToLinear(200 / 255.0f), kStep);
 }
 
 }  // namespace

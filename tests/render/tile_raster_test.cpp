@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
+#include "server/render/srgb.hpp"
 #include "tests/render/tile_drawing.hpp"
 
 namespace flagsim::render {
@@ -31,7 +33,7 @@ ScreenVertex At(float x, float y, float z, float diffuse) {
 }
 
 TEST(TileRaster, GouraudColoursAreTheInterpolatedLight) {
-  // D = x / 32 at every vertex (S = 0): each pixel shows round(255 (x + 0.5) / 32).
+  // D = x / 32 at every vertex (S = 0): each pixel shows the light (x + 0.5) / 32 in sRGB.
   const RenderScene scene = White();
   Framebuffer framebuffer;
   framebuffer.Resize(32, 32);
@@ -42,7 +44,7 @@ TEST(TileRaster, GouraudColoursAreTheInterpolatedLight) {
   DrawInTile(&framebuffer, TileRect{0, 0, 32, 32},
              [&](const TileTarget& tile) { RasterizeTriangle(t, context, tile); });
   for (const auto& [x, y] : {std::pair{0, 0}, std::pair{10, 3}, std::pair{20, 5}, std::pair{5, 20}}) {
-    const int expected = int(255 * (x + 0.5f) / 32 + 0.5f);
+    const int expected = int(std::lround(255 * LinearToSrgb((x + 0.5f) / 32)));
     EXPECT_NEAR(framebuffer.Pixel(x, y)[0], expected, 1) << x << "," << y;
   }
   EXPECT_EQ(framebuffer.Pixel(31, 31)[0], 0);  // outside: untouched
@@ -50,8 +52,8 @@ TEST(TileRaster, GouraudColoursAreTheInterpolatedLight) {
 
 TEST(TileRaster, EveryCoveredPixelGetsItsPlanesValueInAnyTiling) {
   // Small (walked in a window, shaded in blocks of any rows) and large triangles, perspective
-  // correct: each covered pixel shows D = (D/w plane) / (1/w plane), the planes evaluated
-  // along the pixel's row first, and the rest stays black.
+  // correct: each covered pixel shows D = (D/w plane) / (1/w plane) encoded to sRGB, the planes
+  // evaluated along the pixel's row first, and the rest stays black.
   const RenderScene scene = White();
   ShadeContext context;
   context.scene = &scene;
@@ -86,7 +88,7 @@ TEST(TileRaster, EveryCoveredPixelGetsItsPlanesValueInAnyTiling) {
           const float fx = float(px - t.min_x);
           const auto value = [&](const Plane& p) { return (p.origin + p.dy * fy) + p.dx * fx; };
           const float diffuse = value(t.channels[0]) * (1.0f / value(t.inverse_w));
-          const int expected = std::max(int(std::min(diffuse * 255.0f + 0.5f, 255.0f)), 0);
+          const int expected = int(EncodeSrgb(diffuse));
           ASSERT_EQ(framebuffer.Pixel(px, y)[0], px >= first && px <= last ? expected : 0)
               << "trial " << trial << " tile " << tile << " at " << px << "," << y;
         }
@@ -112,7 +114,7 @@ TEST(TileRaster, TheNearerTriangleWinsInEitherOrder) {
       RasterizeTriangle(near_first ? near_dark : far_light, context, tile);
       RasterizeTriangle(near_first ? far_light : near_dark, context, tile);
     });
-    EXPECT_EQ(framebuffer.Pixel(3, 3)[0], 51) << near_first;  // 0.2 * 255
+    EXPECT_EQ(framebuffer.Pixel(3, 3)[0], EncodeSrgb(0.2f)) << near_first;
     EXPECT_FLOAT_EQ(framebuffer.depth[3 * 16 + 3], 0.3f);
   }
 }

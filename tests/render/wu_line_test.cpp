@@ -79,11 +79,11 @@ TEST(DrawSmoothLine, BlendsByCoverageAndTileByTileDrawsWhatTheWholeLineDraws) {
   }
   EXPECT_EQ(whole.rgb, tiled.rgb);
   EXPECT_EQ(whole.depth, tiled.depth);
-  // Over black, each pixel's red is its coverage of 255 (in 256ths, rounded).
+  // Over black, each pixel's red is its coverage of the line's light (in 256ths, rounded), in sRGB.
   WuLine(line.fx0, line.fy0, line.fx1, line.fy1, [&](int x, int y, float, float share) {
     if (x < 0 || x >= 40 || y < 0 || y >= 30) return;
-    const int weight = int(share * 256.0f + 0.5f);
-    EXPECT_EQ(whole.Pixel(x, y)[0], (255 * weight + 128) / 256) << x << "," << y;
+    const uint32_t weight = uint32_t(share * 256.0f + 0.5f);
+    EXPECT_EQ(whole.Pixel(x, y)[0], EncodeSrgb16((kLinearOne * weight + 128) / 256)) << x << "," << y;
   });
 }
 
