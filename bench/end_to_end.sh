@@ -4,19 +4,21 @@
 # count in turn, in one run: the sustained frame rate (mean and worst second), the real-time
 # factor, tiles and bytes per frame against a raw frame, and how long a snapshot takes from its
 # REFRESH to a complete, hash-checked keyframe (median and worst).
-#   bench/end_to_end.sh [--busy] [--threads "1 2"] [--snapshots N] [BUILD_DIR] [SECONDS]
+#   bench/end_to_end.sh [--busy] [--threads "1 2"] [--snapshots N] [--set NAME=VALUE]... [BUILD_DIR] [SECONDS]
+# --set: a parameter for flagd besides the bench's own (antialias=off, say), repeatable.
 # --busy: a neighbour process spins on one core throughout (a shell loop), as a busy laptop's
 # browser would. Runs inside a private network namespace (scripts/netns-run), so nothing leaves
 # the machine.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 busy=0 thread_counts="1 2" snapshots=20
-args=()
+args=() sets=()
 while (($#)); do
   case $1 in
     --busy) busy=1 ;;
     --threads) thread_counts=$2; shift ;;
     --snapshots) snapshots=$2; shift ;;
+    --set) sets+=(--set "$2"); shift ;;
     *) args+=("$1") ;;
   esac
   shift
@@ -24,7 +26,7 @@ done
 build=$(cd "${args[0]:-$root/build}" && pwd)
 seconds=${args[1]:-10}
 if [[ -z ${FLAGSIM_IN_NETNS:-} ]]; then
-  flags=(--threads "$thread_counts" --snapshots "$snapshots")
+  flags=(--threads "$thread_counts" --snapshots "$snapshots" "${sets[@]}")
   ((busy)) && flags+=(--busy)
   FLAGSIM_IN_NETNS=1 exec "$root/scripts/netns-run" -- "$0" "${flags[@]}" "$build" "$seconds"
 fi
@@ -43,7 +45,7 @@ fi
 measure() {
   local threads=$1
   "$build/server/flagd" --log-level warn --set cols=64 --set rows=48 --set threads="$threads" \
-    --set frame_rate=60 &
+    --set frame_rate=60 "${sets[@]}" &
   local server=$!
   pids+=($server)
   sleep 3  # past start-up and the first keyframe
