@@ -32,9 +32,9 @@
 namespace flagsim {
 namespace {
 
-constexpr int kFactors[] = {3, 4};                     ///< the references' pixels per pixel along each axis
-constexpr double kTimes[] = {0.25, 0.5, 0.75};         ///< s of simulated time
-constexpr int kMargin = 8;                             ///< px around the flag and pole's box
+constexpr int kFactors[] = {3, 4};              ///< the references' pixels per pixel along each axis
+constexpr double kTimes[] = {0.25, 0.5, 0.75};  ///< s of simulated time
+constexpr int kMargin = 8;                      ///< px around the flag and pole's box
 
 /// 1 inside the box of the flag's nodes and the pole's ends as `input`'s camera sees them, widened
 /// by kMargin, per pixel.
@@ -68,8 +68,9 @@ void WriteComparison(const std::string& dir, double time, const render::Framebuf
   std::vector<uint8_t> difference(frame.rgb.size());
   for (size_t i = 0; i < difference.size(); ++i)
     difference[i] = uint8_t(std::min(255, 4 * std::abs(int(frame.rgb[i]) - int(reference[i]))));
-  for (const auto& [name, rgb] : {std::pair{"frame", frame.rgb.data()}, std::pair{"reference", reference.data()},
-                                  std::pair{"difference", static_cast<const uint8_t*>(difference.data())}}) {
+  for (const auto& [name, rgb] :
+       {std::pair{"frame", frame.rgb.data()}, std::pair{"reference", reference.data()},
+        std::pair{"difference", static_cast<const uint8_t*>(difference.data())}}) {
     const std::string problem = WritePng(dir + "/" + name + suffix, frame.width, frame.height, rgb);
     if (!problem.empty()) std::fprintf(stderr, "picture_bench: %s\n", problem.c_str());
   }
@@ -115,8 +116,8 @@ int main(int argc, char** argv) {
       const double two = bench::MedianMs(3, frames, [&] { painter.Paint(input, 2); });
       std::printf("%-6.2f %-6s %10.2f %10.2f %10.2f %9.2f %9.2f %5dx%d\n", time,
                   render::AntialiasingNames()[mode].c_str(), bench::Psnr(frame.rgb, references[0], &region),
-                  bench::Psnr(frame.rgb, references[1], &region), bench::Psnr(frame.rgb, references[0]), one, two,
-                  input.cols, input.rows);
+                  bench::Psnr(frame.rgb, references[1], &region), bench::Psnr(frame.rgb, references[0]), one,
+                  two, input.cols, input.rows);
     }
   }
   return 0;

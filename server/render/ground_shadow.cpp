@@ -53,7 +53,8 @@ void GroundShadow::Cast(const RenderScene& scene) {
 void GroundShadow::Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c) {
   const Eigen::Vector2f* corners[3] = {&a, &b, &c};
   const float low = std::min({a.y(), b.y(), c.y()}), high = std::max({a.y(), b.y(), c.y()});
-  const int first_row = std::max(0, int(std::ceil(low - 0.5f))), last_row = std::min(kTexels - 1, int(std::floor(high - 0.5f)));
+  const int first_row = std::max(0, int(std::ceil(low - 0.5f))),
+            last_row = std::min(kTexels - 1, int(std::floor(high - 0.5f)));
   for (int y = first_row; y <= last_row; ++y) {
     const float centre = float(y) + 0.5f;
     float left = INFINITY, right = -INFINITY;
@@ -65,7 +66,8 @@ void GroundShadow::Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, cons
       left = std::min(left, x);
       right = std::max(right, x);
     }
-    const int first = std::max(0, int(std::ceil(left - 0.5f))), last = std::min(kTexels - 1, int(std::floor(right - 0.5f)));
+    const int first = std::max(0, int(std::ceil(left - 0.5f))),
+              last = std::min(kTexels - 1, int(std::floor(right - 0.5f)));
     float* row = &texels_[size_t(y) * kTexels];
     for (int x = first; x <= last; ++x) row[x] = 1.0f;
   }
@@ -79,7 +81,8 @@ void GroundShadow::Blur() {
       for (int x = 0; x < kTexels; ++x) {
         float sum = 0;
         for (int d = -1; d <= 1; ++d) {
-          const int sx = std::clamp(x + d * step_x, 0, kTexels - 1), sy = std::clamp(y + d * step_y, 0, kTexels - 1);
+          const int sx = std::clamp(x + d * step_x, 0, kTexels - 1),
+                    sy = std::clamp(y + d * step_y, 0, kTexels - 1);
           sum += in[size_t(sy) * kTexels + sx];
         }
         (*out)[size_t(y) * kTexels + x] = sum / 3;

@@ -49,11 +49,11 @@ class GroundShadow {
   void Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c);
   void Blur();
 
-  Eigen::Vector2f origin_ = Eigen::Vector2f::Zero();  ///< m, the map's (x, z) corner
-  float texel_size_ = 1;                              ///< m
-  float per_metre_ = 1;                               ///< texels
-  Eigen::Vector3f sun_light_ = Eigen::Vector3f::Zero();   ///< the casting light's colour times n . l
-  std::vector<float> texels_, scratch_;               ///< kTexels^2, row z, column x
+  Eigen::Vector2f origin_ = Eigen::Vector2f::Zero();     ///< m, the map's (x, z) corner
+  float texel_size_ = 1;                                 ///< m
+  float per_metre_ = 1;                                  ///< texels
+  Eigen::Vector3f sun_light_ = Eigen::Vector3f::Zero();  ///< the casting light's colour times n . l
+  std::vector<float> texels_, scratch_;                  ///< kTexels^2, row z, column x
 };
 
 inline float GroundShadow::At(float x, float z) const {

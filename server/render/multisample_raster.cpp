@@ -51,14 +51,15 @@ class MultisampledRows {
       for (int k = 0; k < pattern_.count; ++k) {
         if (whole) {
           row[k] = {x_first_, x_last_};
-        } else if (spans[k].Span(&row[k].first, &row[k].last)) {
+          continue;
+        }
+        if (spans[k].Span(&row[k].first, &row[k].last)) {
           row[k].first = std::max(row[k].first, x_first_);
           row[k].last = std::min(row[k].last, x_last_);
-          spans[k].NextRow();
         } else {
           row[k] = {};
-          spans[k].NextRow();
         }
+        spans[k].NextRow();
       }
       FillRow(shader, y, row);
     }
@@ -127,13 +128,15 @@ class MultisampledRows {
     std::memset(won, 0, size_t(n) * sizeof(*won));
     bool any = false;
     for (int k = 0; k < pattern_.count; ++k) {
-      if (row[k].first <= row[k].last) any |= DepthTest(k, y, at[Planes::kDepth], row[k], won + (row[k].first - first));
+      if (row[k].first <= row[k].last)
+        any |= DepthTest(k, y, at[Planes::kDepth], row[k], won + (row[k].first - first));
     }
     if (!any) return;
     uint32_t* colour = target_.row_colour;
     ShadeRow(shader, at, first, n, won, colour);
     for (int k = 0; k < pattern_.count; ++k) {
-      if (row[k].first <= row[k].last) Store(k, y, row[k], won + (row[k].first - first), colour + (row[k].first - first));
+      if (row[k].first <= row[k].last)
+        Store(k, y, row[k], won + (row[k].first - first), colour + (row[k].first - first));
     }
   }
 

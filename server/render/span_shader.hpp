@@ -123,9 +123,9 @@ class BlockShader {
  private:
   const Planes& planes_;
   float base_[3];
-  FilteredTexture::Sampler sampler_;       ///< kPatterned: the triangle's levels
+  FilteredTexture::Sampler sampler_;      ///< kPatterned: the triangle's levels
   const GroundShadow* shadow_ = nullptr;  ///< kShadowed
-  float sun_[3] = {};                      ///< kShadowed: Dsun
+  float sun_[3] = {};                     ///< kShadowed: Dsun
 };
 
 /// Phong: channels are world position (0-2) and normal (3-5); Blinn-Phong per pixel, with the
@@ -135,7 +135,8 @@ class PhongShader {
  public:
   PhongShader(const TriangleSetup& t, const ShadeContext& context, const Planes& planes)
       : t_(t), context_(context), planes_(planes), material_(context.scene->materials[t.material]) {
-    if (material_.patterned) sampler_ = context.pattern->SamplerAt(context.pattern->LevelOfDetail(t.uv_area_per_pixel));
+    if (material_.patterned)
+      sampler_ = context.pattern->SamplerAt(context.pattern->LevelOfDetail(t.uv_area_per_pixel));
     shadowed_ = material_.receives_shadow && context.shadow != nullptr && !context.shadow->empty();
     if (shadowed_) sun_ = context.shadow->SunDiffuse(material_);
   }
@@ -149,8 +150,8 @@ class PhongShader {
     for (int k = 0; k < kPlaneChannels; ++k) c[k] = value(Planes::kChannel + k) * w;
     Eigen::Vector3f normal = Eigen::Vector3f(c[3], c[4], c[5]).normalized();
     if (t_.back_facing) normal = -normal;
-    const render::Shade shade =
-        ShadePoint(material_, context_.scene->lighting, Eigen::Vector3f(c[0], c[1], c[2]), normal, context_.eye);
+    const render::Shade shade = ShadePoint(material_, context_.scene->lighting,
+                                           Eigen::Vector3f(c[0], c[1], c[2]), normal, context_.eye);
     Eigen::Vector3f base = material_.colour;
     if (material_.patterned) {
       float texel[3];
@@ -178,15 +179,16 @@ class PhongShader {
   const ShadeContext& context_;
   const Planes& planes_;
   const Material& material_;
-  FilteredTexture::Sampler sampler_;  ///< when patterned: the triangle's levels
-  bool shadowed_ = false;             ///< in the ground's shadow
+  FilteredTexture::Sampler sampler_;               ///< when patterned: the triangle's levels
+  bool shadowed_ = false;                          ///< in the ground's shadow
   Eigen::Vector3f sun_ = Eigen::Vector3f::Zero();  ///< when shadowed: Dsun
 };
 
 /// Whether a receiving triangle's pixels [x0, x1] x [y0, y1] may show ground in shadow: the
 /// (u, v) = (x, z) at the box's corners (channels 6, 7 over 1 / w), whose box holds all the box
 /// shows of a plane.
-inline bool BoxMayBeShadowed(const TriangleSetup& t, const GroundShadow& shadow, int x0, int y0, int x1, int y1) {
+inline bool BoxMayBeShadowed(const TriangleSetup& t, const GroundShadow& shadow, int x0, int y0, int x1,
+                             int y1) {
   if (shadow.empty()) return false;
   float low[2] = {INFINITY, INFINITY}, high[2] = {-INFINITY, -INFINITY};
   for (const int x : {x0, x1}) {
@@ -209,13 +211,14 @@ inline bool BoxMayBeShadowed(const TriangleSetup& t, const GroundShadow& shadow,
 /// surface (kShadowed only where the box's ground may be in shadow: its corners' (u, v) span
 /// the ground it shows, a projective image of the box), PhongShader for Phong.
 template <class Fill>
-void WithShader(const TriangleSetup& t, const ShadeContext& context, const Planes& planes, int x0, int y0, int x1,
-                int y1, const Fill& fill) {
+void WithShader(const TriangleSetup& t, const ShadeContext& context, const Planes& planes, int x0, int y0,
+                int x1, int y1, const Fill& fill) {
   const Material& material = context.scene->materials[t.material];
   if (context.mode == ShadingMode::kPhong) {
     fill(PhongShader(t, context, planes));
   } else if (material.patterned) {
-    fill(BlockShader<Surface::kPatterned>(planes, material, context, context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
+    fill(BlockShader<Surface::kPatterned>(planes, material, context,
+                                          context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
   } else if (material.receives_shadow && context.shadow != nullptr &&
              BoxMayBeShadowed(t, *context.shadow, x0, y0, x1, y1)) {
     fill(BlockShader<Surface::kShadowed>(planes, material, context));

@@ -23,7 +23,8 @@ const std::array<uint32_t, kEncodeSteps> kSrgbEncode = [] {
 
 const std::array<uint32_t, 256> kSrgbDecode = [] {
   std::array<uint32_t, 256> table{};
-  for (int b = 0; b < 256; ++b) table[size_t(b)] = uint32_t(std::lround(double(kLinearOne) * SrgbToLinear(b / 255.0f)));
+  for (int b = 0; b < 256; ++b)
+    table[size_t(b)] = uint32_t(std::lround(double(kLinearOne) * SrgbToLinear(b / 255.0f)));
   return table;
 }();
 

@@ -22,9 +22,9 @@ namespace flagsim::render {
 float SrgbToLinear(float s);  ///< 0..1 => 0..1
 float LinearToSrgb(float linear);
 
-constexpr int kEncodeSteps = 4096;          ///< linear 0 .. 1 in kEncodeSteps - 1 steps
-constexpr uint32_t kLinearOne = 65520;      ///< 16-bit linear 1: (kEncodeSteps - 1) * 16, so a
-                                            ///< 16-bit value's step is value / 16, rounded
+constexpr int kEncodeSteps = 4096;      ///< linear 0 .. 1 in kEncodeSteps - 1 steps
+constexpr uint32_t kLinearOne = 65520;  ///< 16-bit linear 1: (kEncodeSteps - 1) * 16, so a
+                                        ///< 16-bit value's step is value / 16, rounded
 
 /// The sRGB byte of linear k / (kEncodeSteps - 1), for k = 0 .. kEncodeSteps - 1 (32-bit
 /// entries: vector loops gather them).
@@ -35,7 +35,8 @@ extern const std::array<uint32_t, 256> kSrgbDecode;
 /// Linear 0..1 (clamped) => sRGB byte. Inline and branch-free: the tiles call it per pixel in
 /// loops the compiler vectorises.
 inline uint32_t EncodeSrgb(float linear) {
-  const int step = static_cast<int>(std::min(linear * float(kEncodeSteps - 1) + 0.5f, float(kEncodeSteps - 1)));
+  const int step =
+      static_cast<int>(std::min(linear * float(kEncodeSteps - 1) + 0.5f, float(kEncodeSteps - 1)));
   return kSrgbEncode[size_t(std::max(step, 0))];
 }
 

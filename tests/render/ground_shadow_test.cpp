@@ -13,7 +13,8 @@ namespace {
 /// A 1 m square, level, centred on (0, height, 0), seen from both sides.
 Mesh LevelSquare(float height) {
   Mesh square;
-  for (const auto& [x, z] : {std::pair{-0.5f, -0.5f}, std::pair{-0.5f, 0.5f}, std::pair{0.5f, 0.5f}, std::pair{0.5f, -0.5f}}) {
+  for (const auto& [x, z] :
+       {std::pair{-0.5f, -0.5f}, std::pair{-0.5f, 0.5f}, std::pair{0.5f, 0.5f}, std::pair{0.5f, -0.5f}}) {
     square.positions.emplace_back(x, height, z);
     square.normals.emplace_back(0, 1, 0);
     square.uvs.emplace_back(0, 0);

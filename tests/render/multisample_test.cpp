@@ -22,7 +22,8 @@ constexpr Antialiasing kMultisampled[] = {Antialiasing::kMsaa2, Antialiasing::kM
 /// Materials: 0 white, 1 red, 2 green; colour = material * D with D = 1 and no specular.
 RenderScene Paints() {
   RenderScene scene;
-  for (const Eigen::Vector3f& colour : {Eigen::Vector3f(1, 1, 1), Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, 1, 0)}) {
+  for (const Eigen::Vector3f& colour :
+       {Eigen::Vector3f(1, 1, 1), Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, 1, 0)}) {
     Material material;
     material.colour = colour;
     scene.materials.push_back(material);
@@ -63,7 +64,9 @@ Framebuffer Draw(const std::vector<TriangleSetup>& triangles, Antialiasing mode,
 
 /// A pixel of which `inside` of n samples are full on (255) and the rest off (0), resolved: the
 /// mean of their light, rounded, in sRGB.
-uint32_t Resolved(int inside, int n) { return EncodeSrgb16((kLinearOne * uint32_t(inside) + uint32_t(n) / 2) / uint32_t(n)); }
+uint32_t Resolved(int inside, int n) {
+  return EncodeSrgb16((kLinearOne * uint32_t(inside) + uint32_t(n) / 2) / uint32_t(n));
+}
 
 /// Sample k of pixel (x, y) is inside t: all three edge functions, with their top-left bias,
 /// at the sample's point in subpixels, worked out here in int64.
@@ -88,8 +91,10 @@ TEST(Multisample, EachPixelShowsTheShareOfItsSamplesInside) {
       const bool small = trial % 2 == 0;
       const float cx = corner(random), cy = corner(random);
       const ScreenVertex a = small ? At(cx, cy) : At(corner(random), corner(random));
-      const ScreenVertex b = small ? At(cx + offset(random), cy + offset(random)) : At(corner(random), corner(random));
-      const ScreenVertex c = small ? At(cx + offset(random), cy + offset(random)) : At(corner(random), corner(random));
+      const ScreenVertex b =
+          small ? At(cx + offset(random), cy + offset(random)) : At(corner(random), corner(random));
+      const ScreenVertex c =
+          small ? At(cx + offset(random), cy + offset(random)) : At(corner(random), corner(random));
       TriangleSetup t;
       if (!SetupTriangle(a, b, c, kSize, kSize, &t, pattern.reach)) continue;
       for (const int tile : {8, 32}) {
@@ -99,8 +104,8 @@ TEST(Multisample, EachPixelShowsTheShareOfItsSamplesInside) {
             int inside = 0;
             for (int k = 0; k < pattern.count; ++k) inside += Inside(t, x, y, pattern.offsets[k]);
             ASSERT_EQ(image.Pixel(x, y)[0], Resolved(inside, pattern.count))
-                << AntialiasingNames()[int(mode)] << " trial " << trial << " tile " << tile << " at " << x << ","
-                << y;
+                << AntialiasingNames()[int(mode)] << " trial " << trial << " tile " << tile << " at " << x
+                << "," << y;
           }
         }
       }
@@ -126,11 +131,12 @@ TEST(Multisample, AnEdgesCoverageIsCloseToTheAreaItLeavesInside) {
   // A white triangle below a shallow line across the image: where the line crosses a pixel, its
   // brightness follows the area below the line, within the error of n samples.
   const double y0 = 9.3, slope = 0.23;
-  for (const Antialiasing mode : {Antialiasing::kOff, Antialiasing::kMsaa2, Antialiasing::kMsaa4, Antialiasing::kMsaa8}) {
+  for (const Antialiasing mode :
+       {Antialiasing::kOff, Antialiasing::kMsaa2, Antialiasing::kMsaa4, Antialiasing::kMsaa8}) {
     const SamplePattern pattern = PatternOf(mode);
     TriangleSetup t;
-    ASSERT_TRUE(SetupTriangle(At(-8, float(y0 - 8 * slope)), At(40, float(y0 + 40 * slope)), At(16, 60), kSize, kSize,
-                              &t, pattern.reach));
+    ASSERT_TRUE(SetupTriangle(At(-8, float(y0 - 8 * slope)), At(40, float(y0 + 40 * slope)), At(16, 60),
+                              kSize, kSize, &t, pattern.reach));
     const Framebuffer image = Draw({t}, mode, kSize);
     double error_sum = 0, error_max = 0;
     int edge_pixels = 0;
@@ -159,7 +165,8 @@ TEST(Multisample, TwoTrianglesSharingAnEdgeCoverEverySampleOnce) {
     const int reach = PatternOf(mode).reach;
     TriangleSetup red, green;
     ASSERT_TRUE(SetupTriangle(At(3.3f, 2.1f), At(29.6f, 4.7f), At(5.2f, 28.9f), kSize, kSize, &red, reach));
-    ASSERT_TRUE(SetupTriangle(At(29.6f, 4.7f), At(27.4f, 30.2f), At(5.2f, 28.9f), kSize, kSize, &green, reach));
+    ASSERT_TRUE(
+        SetupTriangle(At(29.6f, 4.7f), At(27.4f, 30.2f), At(5.2f, 28.9f), kSize, kSize, &green, reach));
     red.material = 1;
     green.material = 2;
     const Framebuffer image = Draw({red, green}, mode, 8);
@@ -170,8 +177,8 @@ TEST(Multisample, TwoTrianglesSharingAnEdgeCoverEverySampleOnce) {
         const int n = PatternOf(mode).count;
         bool shared = false;
         for (int a = 0; a <= n; ++a) shared |= p[0] == Resolved(a, n) && p[1] == Resolved(n - a, n);
-        ASSERT_TRUE(shared) << AntialiasingNames()[int(mode)] << " at " << x << "," << y << ": " << int(p[0]) << ", "
-                            << int(p[1]);
+        ASSERT_TRUE(shared) << AntialiasingNames()[int(mode)] << " at " << x << "," << y << ": " << int(p[0])
+                            << ", " << int(p[1]);
         diagonal += p[0] > 0 && p[1] > 0;
       }
     }
@@ -185,10 +192,12 @@ TEST(Multisample, TheNearerTriangleWinsEachSampleInEitherOrder) {
     const int reach = PatternOf(mode).reach;
     TriangleSetup red, green;
     ASSERT_TRUE(SetupTriangle(At(2, 2, 0.2f), At(30, 6, 0.8f), At(4, 30, 0.2f), kSize, kSize, &red, reach));
-    ASSERT_TRUE(SetupTriangle(At(30, 2, 0.3f), At(28, 30, 0.3f), At(1, 14, 0.7f), kSize, kSize, &green, reach));
+    ASSERT_TRUE(
+        SetupTriangle(At(30, 2, 0.3f), At(28, 30, 0.3f), At(1, 14, 0.7f), kSize, kSize, &green, reach));
     red.material = 1;
     green.material = 2;
-    EXPECT_EQ(Draw({red, green}, mode, 8).rgb, Draw({green, red}, mode, 32).rgb) << AntialiasingNames()[int(mode)];
+    EXPECT_EQ(Draw({red, green}, mode, 8).rgb, Draw({green, red}, mode, 32).rgb)
+        << AntialiasingNames()[int(mode)];
   }
 }
 

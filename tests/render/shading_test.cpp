@@ -35,12 +35,14 @@ TEST(Shading, WrappedLightReachesPastTheTerminator) {
   cloth.wrap = 0.5f;
   const Eigen::Vector3f eye(0, 5, 0);
   // The sun on the horizon (n . l = 0): a plain material is dark, a wrapped one gets kd w / (1 + w).
-  const Shade at_terminator = ShadePoint(cloth, Sun(Eigen::Vector3f(1, 0, 0)), Eigen::Vector3f::Zero(), kUp, eye);
+  const Shade at_terminator =
+      ShadePoint(cloth, Sun(Eigen::Vector3f(1, 0, 0)), Eigen::Vector3f::Zero(), kUp, eye);
   EXPECT_NEAR(at_terminator.diffuse.x(), cloth.diffuse * 0.5f / 1.5f, 1e-6f);
   // n . l = -w: no light at all; overhead (n . l = 1): all of kd, as without wrap.
   const Eigen::Vector3f below(std::sqrt(0.75f), -0.5f, 0);
   EXPECT_EQ(ShadePoint(cloth, Sun(below), Eigen::Vector3f::Zero(), kUp, eye).diffuse.x(), 0.0f);
-  EXPECT_NEAR(ShadePoint(cloth, Sun(kUp), Eigen::Vector3f::Zero(), kUp, eye).diffuse.x(), cloth.diffuse, 1e-6f);
+  EXPECT_NEAR(ShadePoint(cloth, Sun(kUp), Eigen::Vector3f::Zero(), kUp, eye).diffuse.x(), cloth.diffuse,
+              1e-6f);
 }
 
 TEST(Shading, SheenBrightensTheClothSeenEdgeOn) {
@@ -51,7 +53,8 @@ TEST(Shading, SheenBrightensTheClothSeenEdgeOn) {
   const Eigen::Vector3f p = Eigen::Vector3f::Zero();
   const Shade face_on = ShadePoint(cloth, lighting, p, kUp, Eigen::Vector3f(0, 5, 0));
   const Shade edge_on = ShadePoint(cloth, lighting, p, kUp, Eigen::Vector3f(5, 0, 0));
-  const Shade at_60 = ShadePoint(cloth, lighting, p, kUp, Eigen::Vector3f(std::sin(M_PI / 3), std::cos(M_PI / 3), 0));
+  const Shade at_60 =
+      ShadePoint(cloth, lighting, p, kUp, Eigen::Vector3f(std::sin(M_PI / 3), std::cos(M_PI / 3), 0));
   EXPECT_NEAR(face_on.specular.x(), 0.0f, 1e-6f);
   EXPECT_NEAR(edge_on.specular.x(), cloth.sheen, 1e-6f);
   EXPECT_NEAR(at_60.specular.x(), cloth.sheen * std::pow(0.5f, 5.0f), 1e-6f);

@@ -38,8 +38,9 @@ TEST(WuLine, ALineBetweenRowsIsSharedByTheTwoByDistance) {
 
 TEST(WuLine, EachStepOfTheMajorAxisCarriesOnePixelOfLight) {
   // Shallow and steep, in every direction: per column (shallow) or row (steep), the shares sum to one.
-  for (const auto& [x0, y0, x1, y1] : {std::tuple{1.3f, 2.9f, 27.8f, 13.1f}, std::tuple{27.8f, 13.1f, 1.3f, 2.9f},
-                                       std::tuple{4.2f, 1.1f, 9.7f, 28.4f}, std::tuple{9.7f, 28.4f, 4.2f, 1.1f}}) {
+  for (const auto& [x0, y0, x1, y1] :
+       {std::tuple{1.3f, 2.9f, 27.8f, 13.1f}, std::tuple{27.8f, 13.1f, 1.3f, 2.9f},
+        std::tuple{4.2f, 1.1f, 9.7f, 28.4f}, std::tuple{9.7f, 28.4f, 4.2f, 1.1f}}) {
     const bool steep = std::abs(y1 - y0) > std::abs(x1 - x0);
     std::map<int, float> per_step;
     WuLine(x0, y0, x1, y1, [&](int x, int y, float, float share) { per_step[steep ? y : x] += share; });
