@@ -2,9 +2,10 @@
 //
 // With n samples a pixel keeps n colours and n depths. A triangle is tested at each sample
 // (the same exact edge functions as at the pixel centre, on a grid shifted by the sample's
-// offset), the depth test runs per sample, and the pixel is shaded once, at its centre, for
-// all the samples the triangle wins. The picture is the mean of a pixel's samples: an edge
-// crossing a pixel leaves it the share of the samples each side covers.
+// offset), the depth test runs per sample, and the pixel is shaded once for all the samples
+// the triangle wins, at the mean place of those samples (SamplePattern::centroid_x, _y). The
+// picture is the mean of a pixel's samples, in light: an edge crossing a pixel leaves it the
+// share of the samples each side covers.
 //
 // The offsets are the usual rotated grids (the standard 2x, 4x and 8x positions of Direct3D
 // and Vulkan), in 1/16 px: no two samples share a row or a column, so a near-horizontal or

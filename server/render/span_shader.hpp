@@ -18,14 +18,6 @@
 
 namespace flagsim::render {
 
-/// 0..1 => 0..255, rounded and clamped; branch-free so that the loops using it vectorise.
-/// Clamped above before the conversion to int and below after it, which is min(max(v, 0), 255)
-/// converted, in fewer vector instructions.
-inline uint32_t ToByte(float value) {
-  const int32_t truncated = static_cast<int32_t>(std::min(value * 255.0f + 0.5f, 255.0f));
-  return static_cast<uint32_t>(std::max(truncated, 0));
-}
-
 /// A triangle's planes side by side: depth, 1 / w, the channels, then zeros up to whole
 /// vectors. A row's values of them all are then a few vector operations.
 struct Planes {
@@ -63,10 +55,10 @@ enum class Surface {
 };
 
 /// Gouraud and flat: colour = base * D + S (linear light, encoded to sRGB bytes) with D, S the
-/// interpolated light (channels 0-5) and
-/// base the material's colour, times the pattern filtered at (u, v) (channels 6, 7) and the
-/// triangle's level of detail when kPatterned (texture_filter.hpp); kShadowed takes the sun's
-/// share of D and S away in the shadow s at (u, v): base * (D - s Dsun) + S (1 - s).
+/// interpolated light (channels 0-5) and base the material's colour, times the pattern filtered
+/// at (u, v) (channels 6, 7) and the triangle's level of detail when kPatterned
+/// (texture_filter.hpp); kShadowed takes the sun's share of D and S away in the shadow s at
+/// (u, v): base * (D - s Dsun) + S (1 - s).
 /// Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block of kSpanLanes
 /// pixels at once.
 template <Surface kSurface>

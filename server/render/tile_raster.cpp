@@ -15,6 +15,9 @@
 namespace flagsim::render {
 namespace {
 
+/// A display colour 0..1 (the sky's, sRGB already) => 0..255, rounded and clamped.
+uint32_t ToByte(float value) { return uint32_t(std::clamp(value * 255.0f + 0.5f, 0.0f, 255.0f)); }
+
 /// The n pixels of a row from fx0 pixels past the box's first column, kSpanLanes at a time:
 /// the depth test, then where any pixel of the block is in front, the block's colours stored
 /// to those pixels. Lanes past the span repeat its last pixel and are masked off. `at` holds

@@ -171,14 +171,9 @@ LaneSpans::LaneSpans(const TriangleSetup& setup, int x0, int x_last, int y) : x0
 
 LaneSamples::LaneSamples(const TriangleSetup& setup, int x0, int x_last, int y, const SampleOffset* offsets,
                          int count)
-    : count_(count) {
-  // As LaneSpans; a sample (ox, oy) from the centre moves E by dx oy - dy ox, which with
+    : centres_(setup, x0, x_last, y), count_(count) {
   // |ox|, |oy| < kSubpixels / 2 keeps LaneSpans' bound on |E| well within int32.
-  for (int i = 0; i < kWidth; ++i) past_end_[i] = x0 + i > x_last ? -1 : 0;
   for (int e = 0; e < 3; ++e) {
-    growth_[e] = int32_t(setup.edge_dx[e] * kSubpixels);
-    const int64_t at_x0 = EdgeAt(setup, e, x0, y), per_pixel = -int64_t(setup.edge_dy[e]) * kSubpixels;
-    for (int i = 0; i < kWidth; ++i) inside_[e][i] = int32_t(at_x0 + per_pixel * i);
     for (int k = 0; k < count; ++k)
       shift_[k][e] = int32_t(int64_t(setup.edge_dx[e]) * offsets[k].y - int64_t(setup.edge_dy[e]) * offsets[k].x);
   }

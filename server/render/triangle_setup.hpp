@@ -82,7 +82,7 @@ class RowSpans {
   RowSpans() = default;  ///< no span on any row, until assigned
   /// Positioned at row y, testing each pixel at its centre moved by `sample`.
   RowSpans(const TriangleSetup& setup, int y, SampleOffset sample = {});
-  bool Span(int* first, int* last) const;       ///< this row's covered pixels; false if none
+  bool Span(int* first, int* last) const;  ///< this row's covered pixels; false if none
   void NextRow();
 
  private:
@@ -114,52 +114,11 @@ class LaneSpans {
   int32_t growth_[3];          ///< of E a row
   int32_t past_end_[kWidth];   ///< -1 for lanes past x_last, else 0
   int x0_;                     ///< the window's first column
+
+  friend class LaneSamples;  ///< tests its samples against these centres
 };
 
 // Inline: a narrow triangle's rows are short, and a call would cost as much as either.
-/// LaneSpans' window, multisampled: per row, each lane's covered samples as bits.
-class LaneSamples {
- public:
-  static constexpr int kWidth = LaneSpans::kWidth;
-
-  /// Positioned at row y, lanes limited to columns x0 .. x_last (x_last - x0 < kWidth), samples
-  /// at `offsets` (`count` of them, up to kMaxSamples, each within 1/2 px), for a `narrow` setup.
-  LaneSamples(const TriangleSetup& setup, int x0, int x_last, int y, const SampleOffset* offsets, int count);
-  /// This row's coverage: bit k of covered[i] set where lane i's sample k is inside; false if none.
-  bool Cover(int32_t covered[kWidth]) const;
-  void NextRow();
-
- private:
-  int32_t inside_[3][kWidth];     ///< E + bias at each lane's pixel centre
-  int32_t growth_[3];             ///< of E a row
-  int32_t past_end_[kWidth];      ///< -1 for lanes past x_last, else 0
-  int32_t shift_[kMaxSamples][3]; ///< E at sample k less E at the centre, per edge
-  int count_;
-};
-
-inline bool LaneSamples::Cover(int32_t covered[kWidth]) const {
-  int any = 0;
-  for (int i = 0; i < kWidth; ++i) covered[i] = 0;
-  for (int k = 0; k < count_; ++k) {
-    const int32_t* shift = shift_[k];
-#pragma omp simd reduction(| : any)
-    for (int i = 0; i < kWidth; ++i) {
-      const int32_t in = ((inside_[0][i] + shift[0]) | (inside_[1][i] + shift[1]) | (inside_[2][i] + shift[2]) |
-                          past_end_[i]) >= 0;
-      covered[i] |= in << k;
-      any |= in;
-    }
-  }
-  return any != 0;
-}
-
-inline void LaneSamples::NextRow() {
-  for (int k = 0; k < 3; ++k) {
-#pragma omp simd
-    for (int i = 0; i < kWidth; ++i) inside_[k][i] += growth_[k];
-  }
-}
-
 inline bool LaneSpans::Span(int* first, int* last) const {
   // Inside all three edges and not past x_last: no sign bit in the or. Covered lanes are contiguous.
   int low = kWidth, high = -1;
@@ -179,6 +138,43 @@ inline void LaneSpans::NextRow() {
 #pragma omp simd
     for (int i = 0; i < kWidth; ++i) inside_[k][i] += growth_[k];
   }
+}
+
+/// LaneSpans' window, multisampled: per row, each lane's covered samples as bits. The edge
+/// functions at the lanes' centres are LaneSpans'; a sample (ox, oy) from the centre moves each
+/// by the same dx oy - dy ox in every lane and row.
+class LaneSamples {
+ public:
+  static constexpr int kWidth = LaneSpans::kWidth;
+
+  /// Positioned at row y, lanes limited to columns x0 .. x_last (x_last - x0 < kWidth), samples
+  /// at `offsets` (`count` of them, up to kMaxSamples, each within 1/2 px), for a `narrow` setup.
+  LaneSamples(const TriangleSetup& setup, int x0, int x_last, int y, const SampleOffset* offsets, int count);
+  /// This row's coverage: bit k of covered[i] set where lane i's sample k is inside; false if none.
+  bool Cover(int32_t covered[kWidth]) const;
+  void NextRow() { centres_.NextRow(); }
+
+ private:
+  LaneSpans centres_;
+  int32_t shift_[kMaxSamples][3];  ///< E at sample k less E at the centre, per edge
+  int count_;
+};
+
+inline bool LaneSamples::Cover(int32_t covered[kWidth]) const {
+  const auto& inside = centres_.inside_;
+  int any = 0;
+  for (int i = 0; i < kWidth; ++i) covered[i] = 0;
+  for (int k = 0; k < count_; ++k) {
+    const int32_t* shift = shift_[k];
+#pragma omp simd reduction(| : any)
+    for (int i = 0; i < kWidth; ++i) {
+      const int32_t in = ((inside[0][i] + shift[0]) | (inside[1][i] + shift[1]) | (inside[2][i] + shift[2]) |
+                          centres_.past_end_[i]) >= 0;
+      covered[i] |= in << k;
+      any |= in;
+    }
+  }
+  return any != 0;
 }
 
 }  // namespace flagsim::render

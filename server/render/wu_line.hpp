@@ -58,9 +58,8 @@ inline int FloorDiv256(int a) { return a >= 0 ? a / 256 : -((255 - a) / 256); }
 
 /// Draws the pixels of `line` that fall in `tile` as Wu's line, each blended over every
 /// sample it is nearer than, by its coverage, in light: colour + (line - colour) coverage, in
-/// 16-bit linear with the coverage in 256ths, encoded to sRGB again. Its
-/// depth is written where it covers at least half the pixel. Tile by tile, it draws what it
-/// would draw whole.
+/// 16-bit linear with the coverage in 256ths, encoded to sRGB again. Its depth is written where
+/// it covers at least half the pixel. Tile by tile, it draws what it would draw whole.
 inline void DrawSmoothLine(const LineSetup& line, const TileTarget& target) {
   const TileRect& tile = target.rect;
   WuLine(line.fx0, line.fy0, line.fx1, line.fy1, [&](int x, int y, float t, float coverage) {
