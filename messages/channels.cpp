@@ -12,6 +12,7 @@ Channels::Channels(const std::string& prefix_in)
       keyframe(prefix + "KEYFRAME"),
       refresh(prefix + "REFRESH"),
       time(prefix + "TIME"),
+      design(prefix + "DESIGN"),
       ack(prefix + "ACK"),
       state(prefix + "STATE"),
       tile(prefix + "TILE"),
@@ -21,7 +22,8 @@ Channels::Channels(const std::string& prefix_in)
       timeline(prefix + "TIMELINE"),
       applied(prefix + "APPLIED"),
       model(prefix + "MODEL"),
-      checkpoint(prefix + "CHECKPOINT") {}
+      checkpoint(prefix + "CHECKPOINT"),
+      design_file(prefix + "DESIGN_FILE") {}
 
 std::string Channels::CheckPrefix(const std::string& prefix) {
   const std::string allowed = "allowed 1 .. " + std::to_string(kMaxPrefixLength) + " letters, digits and '_'";

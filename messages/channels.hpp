@@ -8,9 +8,9 @@ namespace flagsim {
 
 struct Channels {
   static constexpr const char* kDefaultPrefix = "FLAGSIM_";
-  /// Characters of a prefix, at most: with the longest name (CHECKPOINT, 10) within the 63 of an
-  /// LCM channel name (LCM_MAX_CHANNEL_NAME_LENGTH).
-  static constexpr size_t kMaxPrefixLength = 53;
+  /// Characters of a prefix, at most: with the longest name (DESIGN_FILE, 11) within the 63 of
+  /// an LCM channel name (LCM_MAX_CHANNEL_NAME_LENGTH).
+  static constexpr size_t kMaxPrefixLength = 52;
 
   /// "" if `prefix` makes valid channel names: 1 .. kMaxPrefixLength letters, digits and '_';
   /// else what is wrong and what is allowed. (An empty prefix would make the recorders take every
@@ -27,6 +27,7 @@ struct Channels {
   std::string keyframe;  ///< keyframe_command_t
   std::string refresh;   ///< refresh_request_t
   std::string time;      ///< time_command_t
+  std::string design;    ///< design_piece_t: a person's image, in pieces
   // server -> clients
   std::string ack;       ///< ack_t
   std::string state;     ///< state_t
@@ -39,6 +40,7 @@ struct Channels {
   std::string applied;     ///< applied_command_t
   std::string model;       ///< model_t: auto's decisions, journaled in APPLIED only
   std::string checkpoint;  ///< checkpoint_t
+  std::string design_file;  ///< design_piece_t: the design's image in force, for replay
 
   /// "FLAGSIM_WIND" -> "WIND"; a channel without the prefix comes back unchanged.
   std::string Unprefixed(const std::string& channel) const;

@@ -8,6 +8,7 @@
 namespace flagsim::render {
 
 constexpr int kPatternWidth = 960, kPatternHeight = 640;  ///< texels of the built-in designs
+static_assert(kPatternWidth == kBuiltInDesignAspect * kPatternHeight);
 namespace {
 
 void BuildGridTopology(int cols, int rows, Mesh* mesh) {

@@ -114,6 +114,7 @@ class MultisampledRows {
   /// Row y: the depth test per sample, then shading where any sample won, then the colours.
   template <class Shader>
   void FillRow(const Shader& shader, int y, const SampleSpan row[kMaxSamples]) {
+    if (shader.cutout()) return FillRowCutout(shader, y, row);
     int first = INT_MAX, last = -1;
     for (int k = 0; k < pattern_.count; ++k) {
       if (row[k].first > row[k].last) continue;
@@ -138,6 +139,56 @@ class MultisampledRows {
       if (row[k].first <= row[k].last)
         Store(k, y, row[k], won + (row[k].first - first), colour + (row[k].first - first));
     }
+  }
+
+  /// Row y of a surface cut by its pattern's alpha (alpha to coverage), kSpanLanes pixels at a
+  /// time: each pixel shaded where any sample is inside, at their centre; its alpha keeps
+  /// round(alpha n) of the n samples (AlphaSamples), of which those inside and in front are
+  /// drawn. So a cut edge is smoothed in n + 1 steps, as a triangle's edge is.
+  template <class Shader>
+  void FillRowCutout(const Shader& shader, int y, const SampleSpan row[kMaxSamples]) {
+    alignas(32) float at[Planes::kCount];
+    planes_.AlongRow(float(y - t_.min_y), at);
+    const float z_step = planes_.dx[Planes::kDepth];
+    for (int x0 = x_first_; x0 <= x_last_; x0 += kSpanLanes) {
+      int32_t inside[kSpanLanes] = {};
+      int any = 0;
+      float fx[kSpanLanes], fy[kSpanLanes];
+      for (int i = 0; i < kSpanLanes; ++i) {
+        const int x = std::min(x0 + i, x_last_);
+        for (int k = 0; k < pattern_.count; ++k) inside[i] |= int32_t(row[k].first <= x && x <= row[k].last) << k;
+        if (x0 + i > x_last_) inside[i] = 0;
+        any |= inside[i];
+        fx[i] = float(x - t_.min_x) + pattern_.centroid_x[inside[i]];
+        fy[i] = pattern_.centroid_y[inside[i]];
+      }
+      if (!any) continue;
+      uint32_t colour[kSpanLanes];
+      float alpha[kSpanLanes];
+      shader.Shade(AtRowOffsets(at, planes_, fy), fx, colour, alpha);
+      for (int i = 0; i < kSpanLanes && x0 + i <= x_last_; ++i) {
+        const int x = x0 + i;
+        const int32_t drawn = inside[i] & AlphaSamples(alpha[i], x, y);
+        for (int k = 0; k < pattern_.count; ++k) {
+          if (!((drawn >> k) & 1)) continue;
+          float* depth = target_.Depth(x, y, k);
+          const float here = at[Planes::kDepth] + depth_offset_[k] + z_step * float(x - t_.min_x);
+          if (!(here < *depth)) continue;
+          *depth = here;
+          *target_.Rgbx(x, y, k) = colour[i];
+        }
+      }
+    }
+  }
+
+  /// The samples of pixel (x, y) that alpha 0..1 covers: round(alpha n) of the n, taken in turn
+  /// from a place that moves from pixel to pixel, so that a part-covered area mixes the samples.
+  int32_t AlphaSamples(float alpha, int x, int y) const {
+    const int n = pattern_.count;
+    const int kept = std::clamp(int(alpha * float(n) + 0.5f), 0, n);
+    const int start = (x + 3 * y) % n;
+    const int32_t run = int32_t((1u << kept) - 1u);  // kept bits from bit 0, rotated to start
+    return ((run << start) | (run >> (n - start))) & int32_t((1u << n) - 1u);
   }
 
   /// Sample k's depth test along its span: nearer depths written, bit k set in won[] where so.
@@ -208,7 +259,7 @@ void RasterizeMultisampled(const TriangleSetup& t, const ShadeContext& context, 
   const bool whole = cover == BoxCover::kAll;
   const bool in_window = t.narrow && x_last - x_first < LaneSamples::kWidth;
   const auto fill = [&](const auto& shader) {
-    if (in_window) {
+    if (in_window && !shader.cutout()) {
       rows.FillNarrow(shader, y_first, y_last);
     } else {
       rows.Fill(shader, y_first, y_last, whole);

@@ -17,8 +17,10 @@ Rgb DesignColour(FlagDesign design, float u, float v) {
       return u < 1.0f / 3 ? Rgb{0, 122, 61} : u < 2.0f / 3 ? Rgb{245, 245, 240} : Rgb{206, 17, 38};
     case FlagDesign::kChecker:
       return (int(u * 8) + int(v * 8)) % 2 == 0 ? Rgb{230, 230, 230} : Rgb{40, 40, 40};
+    case FlagDesign::kImage:
+      break;
   }
-  return Rgb{255, 0, 255};
+  return Rgb{255, 255, 255};
 }
 
 }  // namespace

@@ -52,6 +52,7 @@ enum class Surface {
   kPlain,      ///< its colour
   kPatterned,  ///< its colour times the pattern, filtered at (u, v)
   kShadowed,   ///< its colour, in the ground's shadow at (u, v) = (x, z) (ground_shadow.hpp)
+  kCutout,     ///< kPatterned by a pattern with transparent texels: its alpha too
 };
 
 /// Gouraud and flat: colour = base * D + S (linear light, encoded to sRGB bytes) with D, S the
@@ -59,18 +60,20 @@ enum class Surface {
 /// at (u, v) (channels 6, 7) and the triangle's level of detail when kPatterned
 /// (texture_filter.hpp); kShadowed takes the sun's share of D and S away in the shadow s at
 /// (u, v): base * (D - s Dsun) + S (1 - s).
+/// kCutout: as kPatterned with the pattern's straight colour, and its alpha for each pixel.
 /// Perspective-correct: each channel is (channel / w) / (1 / w). Shades a block of kSpanLanes
 /// pixels at once.
 template <Surface kSurface>
 class BlockShader {
  public:
   static constexpr int kChannels = kSurface == Surface::kPlain ? 6 : 8;
+  static constexpr bool kPattern = kSurface == Surface::kPatterned || kSurface == Surface::kCutout;
 
-  /// The context's pattern is read only when kPatterned, at level of detail `lod`; its shadow
-  /// only when kShadowed.
+  /// The context's pattern is read only when kPatterned or kCutout, at level of detail `lod`;
+  /// its shadow only when kShadowed.
   BlockShader(const Planes& planes, const Material& material, const ShadeContext& context, float lod = 0)
       : planes_(planes), base_{material.colour[0], material.colour[1], material.colour[2]} {
-    if constexpr (kSurface == Surface::kPatterned) sampler_ = context.pattern->SamplerAt(lod);
+    if constexpr (kPattern) sampler_ = context.pattern->SamplerAt(lod);
     if constexpr (kSurface == Surface::kShadowed) {
       shadow_ = context.shadow;
       const Eigen::Vector3f sun = shadow_->SunDiffuse(material);
@@ -78,11 +81,16 @@ class BlockShader {
     }
   }
 
+  /// Whether the pixels come with an alpha that cuts the surface (Shade's `alpha`).
+  bool cutout() const { return kSurface == Surface::kCutout; }
+
   /// The colours at fx[i] pixels from the box's first column on rows where plane k is at(k, i)
-  /// in that column. One loop over the lanes, so that each step's values stay in vector
-  /// registers; the loops inside it are unrolled, which vectorising it needs.
+  /// in that column, and where cutout(), their alpha 0..1. One loop over the lanes, so that each
+  /// step's values stay in vector registers; the loops inside it are unrolled, which vectorising
+  /// it needs.
   template <class At>
-  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes]) const {
+  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes],
+             float alpha[kSpanLanes] = nullptr) const {
     const float* step = planes_.dx;
 #pragma omp simd
     for (int i = 0; i < kSpanLanes; ++i) {
@@ -96,6 +104,12 @@ class BlockShader {
       if constexpr (kSurface == Surface::kPatterned) {
         float texel[3];
         sampler_.Sample(c[6], c[7], texel);
+#pragma GCC unroll 3
+        for (int j = 0; j < 3; ++j) base[j] *= texel[j];
+      }
+      if constexpr (kSurface == Surface::kCutout) {
+        float texel[3];
+        sampler_.SampleStraight(c[6], c[7], texel, &alpha[i]);
 #pragma GCC unroll 3
         for (int j = 0; j < 3; ++j) base[j] *= texel[j];
       }
@@ -115,7 +129,7 @@ class BlockShader {
  private:
   const Planes& planes_;
   float base_[3];
-  FilteredTexture::Sampler sampler_;      ///< kPatterned: the triangle's levels
+  FilteredTexture::Sampler sampler_;      ///< kPatterned, kCutout: the triangle's levels
   const GroundShadow* shadow_ = nullptr;  ///< kShadowed
   float sun_[3] = {};                     ///< kShadowed: Dsun
 };
@@ -129,13 +143,17 @@ class PhongShader {
       : t_(t), context_(context), planes_(planes), material_(context.scene->materials[t.material]) {
     if (material_.patterned)
       sampler_ = context.pattern->SamplerAt(context.pattern->LevelOfDetail(t.uv_area_per_pixel));
+    cutout_ = material_.patterned && context.pattern->has_alpha();
     shadowed_ = material_.receives_shadow && context.shadow != nullptr && !context.shadow->empty();
     if (shadowed_) sun_ = context.shadow->SunDiffuse(material_);
   }
 
-  /// The colour fx pixels from the box's first column on a row where plane k is at(k) there.
+  bool cutout() const { return cutout_; }
+
+  /// The colour fx pixels from the box's first column on a row where plane k is at(k) there,
+  /// and where cutout(), its alpha into *alpha.
   template <class At>
-  uint32_t ShadePixel(const At& at, float fx) const {
+  uint32_t ShadePixel(const At& at, float fx, float* alpha = nullptr) const {
     const auto value = [&](int k) { return at(k) + planes_.dx[k] * fx; };
     const float w = 1.0f / value(Planes::kInverseW);
     float c[kPlaneChannels];
@@ -147,7 +165,11 @@ class PhongShader {
     Eigen::Vector3f base = material_.colour;
     if (material_.patterned) {
       float texel[3];
-      sampler_.Sample(c[6], c[7], texel);
+      if (cutout_) {
+        sampler_.SampleStraight(c[6], c[7], texel, alpha);
+      } else {
+        sampler_.Sample(c[6], c[7], texel);
+      }
       base = base.cwiseProduct(Eigen::Vector3f(texel[0], texel[1], texel[2]));
     }
     Eigen::Vector3f diffuse = shade.diffuse, specular = shade.specular;
@@ -162,8 +184,10 @@ class PhongShader {
 
   /// BlockShader's interface: a block of pixels at fx[i].
   template <class At>
-  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes]) const {
-    for (int i = 0; i < kSpanLanes; ++i) colour[i] = ShadePixel([&](int k) { return at(k, i); }, fx[i]);
+  void Shade(const At& at, const float fx[kSpanLanes], uint32_t colour[kSpanLanes],
+             float alpha[kSpanLanes] = nullptr) const {
+    for (int i = 0; i < kSpanLanes; ++i)
+      colour[i] = ShadePixel([&](int k) { return at(k, i); }, fx[i], alpha != nullptr ? &alpha[i] : nullptr);
   }
 
  private:
@@ -173,6 +197,7 @@ class PhongShader {
   const Material& material_;
   FilteredTexture::Sampler sampler_;               ///< when patterned: the triangle's levels
   bool shadowed_ = false;                          ///< in the ground's shadow
+  bool cutout_ = false;                            ///< the pattern's alpha cuts the surface
   Eigen::Vector3f sun_ = Eigen::Vector3f::Zero();  ///< when shadowed: Dsun
 };
 
@@ -200,7 +225,7 @@ inline bool BoxMayBeShadowed(const TriangleSetup& t, const GroundShadow& shadow,
 
 /// Calls fill(shader) with the shader for triangle t in the context's mode, over the box of
 /// pixels [x0, x1] x [y0, y1] of a tile: BlockShader for flat and Gouraud, of the material's
-/// surface (kShadowed only where the box's ground may be in shadow: its corners' (u, v) span
+/// surface (kCutout for a pattern with transparent texels; kShadowed only where the box's ground may be in shadow: its corners' (u, v) span
 /// the ground it shows, a projective image of the box), PhongShader for Phong.
 template <class Fill>
 void WithShader(const TriangleSetup& t, const ShadeContext& context, const Planes& planes, int x0, int y0,
@@ -208,6 +233,8 @@ void WithShader(const TriangleSetup& t, const ShadeContext& context, const Plane
   const Material& material = context.scene->materials[t.material];
   if (context.mode == ShadingMode::kPhong) {
     fill(PhongShader(t, context, planes));
+  } else if (material.patterned && context.pattern->has_alpha()) {
+    fill(BlockShader<Surface::kCutout>(planes, material, context, context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
   } else if (material.patterned) {
     fill(BlockShader<Surface::kPatterned>(planes, material, context,
                                           context.pattern->LevelOfDetail(t.uv_area_per_pixel)));

@@ -6,10 +6,10 @@
 namespace flagsim::render {
 namespace {
 
-uint64_t Pack(uint64_t r, uint64_t g, uint64_t b) { return r | g << 16 | b << 32; }
+uint64_t Pack(uint64_t r, uint64_t g, uint64_t b, uint64_t alpha) { return r | g << 16 | b << 32 | alpha << 48; }
 uint64_t Channel(uint64_t texel, int k) { return texel >> (16 * k) & 0xffff; }
 
-/// Level k + 1 from level k: each texel the rounded mean of a 2 x 2 block (of light).
+/// Level k + 1 from level k: each texel the rounded mean of a 2 x 2 block (of light, and alpha).
 FilteredTexture::Level HalfOf(const FilteredTexture::Level& level) {
   FilteredTexture::Level half;
   half.width = std::max(1, level.width / 2);
@@ -21,11 +21,11 @@ FilteredTexture::Level HalfOf(const FilteredTexture::Level& level) {
   for (int y = 0; y < half.height; ++y) {
     for (int x = 0; x < half.width; ++x) {
       const uint64_t block[4] = {at(2 * x, 2 * y), at(2 * x + 1, 2 * y), at(2 * x, 2 * y + 1), at(2 * x + 1, 2 * y + 1)};
-      uint64_t mean[3];
-      for (int k = 0; k < 3; ++k) {
+      uint64_t mean[4];
+      for (int k = 0; k < 4; ++k) {
         mean[k] = (Channel(block[0], k) + Channel(block[1], k) + Channel(block[2], k) + Channel(block[3], k) + 2) / 4;
       }
-      half.texels[size_t(y) * half.width + x] = Pack(mean[0], mean[1], mean[2]);
+      half.texels[size_t(y) * half.width + x] = Pack(mean[0], mean[1], mean[2], mean[3]);
     }
   }
   return half;
@@ -34,8 +34,12 @@ FilteredTexture::Level HalfOf(const FilteredTexture::Level& level) {
 }  // namespace
 
 void FilteredTexture::Assign(const Texture& texture) {
-  if (texture.width == source_width_ && texture.height == source_height_ && texture.rgb == source_) return;
+  if (texture.width == source_width_ && texture.height == source_height_ && texture.rgb == source_ &&
+      texture.alpha == source_alpha_)
+    return;
   source_ = texture.rgb;
+  source_alpha_ = texture.alpha;
+  has_alpha_ = std::any_of(texture.alpha.begin(), texture.alpha.end(), [](uint8_t a) { return a < 255; });
   source_width_ = texture.width;
   source_height_ = texture.height;
   levels_.clear();
@@ -45,8 +49,10 @@ void FilteredTexture::Assign(const Texture& texture) {
   base.height = texture.height;
   base.texels.resize(size_t(base.width) * base.height);
   for (size_t i = 0; i < base.texels.size(); ++i) {
-    base.texels[i] = Pack(kSrgbDecode[texture.rgb[3 * i]], kSrgbDecode[texture.rgb[3 * i + 1]],
-                          kSrgbDecode[texture.rgb[3 * i + 2]]);
+    const uint64_t alpha = texture.alpha.empty() ? 255 : texture.alpha[i];
+    const auto premultiplied = [alpha](uint8_t byte) { return (kSrgbDecode[byte] * alpha + 127) / 255; };
+    base.texels[i] = Pack(premultiplied(texture.rgb[3 * i]), premultiplied(texture.rgb[3 * i + 1]),
+                          premultiplied(texture.rgb[3 * i + 2]), kLinearOne * alpha / 255);
   }
   levels_.push_back(std::move(base));
   while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(HalfOf(levels_.back()));

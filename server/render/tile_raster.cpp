@@ -47,6 +47,27 @@ void FillSpan(const Shader& shader, const Planes& planes, const float at[Planes:
   }
 }
 
+/// FillSpan for a surface cut by its pattern's alpha (Shader::cutout()): each block is shaded
+/// first, and a pixel is drawn where its alpha is at least 1/2 and it is in front. (With more
+/// than one sample, alpha chooses how many samples it covers: multisample_raster.cpp.)
+template <class Shader>
+void FillSpanCutout(const Shader& shader, const Planes& planes, const float at[Planes::kCount], float fx0, int n,
+                    float* depth, uint32_t* rgbx) {
+  const float z_at = at[Planes::kDepth], z_step = planes.dx[Planes::kDepth];
+  for (int start = 0; start < n; start += kSpanLanes, depth += kSpanLanes, rgbx += kSpanLanes) {
+    float fx[kSpanLanes], alpha[kSpanLanes];
+    for (int i = 0; i < kSpanLanes; ++i) fx[i] = fx0 + float(std::min(start + i, n - 1));
+    uint32_t colour[kSpanLanes];
+    shader.Shade([at](int k, int) { return at[k]; }, fx, colour, alpha);
+    for (int i = 0; i < std::min(kSpanLanes, n - start); ++i) {
+      const float here = z_at + z_step * fx[i];
+      if (!(alpha[i] >= 0.5f && here < depth[i])) continue;
+      depth[i] = here;
+      rgbx[i] = colour[i];
+    }
+  }
+}
+
 /// A narrow triangle's pixels, kSpanLanes at a time whatever their rows, so that a triangle a
 /// few pixels across takes a block or two rather than a block a row. Each lane holds its
 /// pixel's place in the tile and its distance from the box's first column and row; plane k on
@@ -161,8 +182,11 @@ void FillSpanPhong(const PhongShader& shader, const Planes& planes, const float 
     const float fx = fx0 + float(i);
     const float depth_here = at[Planes::kDepth] + planes.dx[Planes::kDepth] * fx;
     if (!(depth_here < depth[i])) continue;
+    float alpha = 1;  // set by a pattern that cuts the surface
+    const uint32_t colour = shader.ShadePixel([at](int k) { return at[k]; }, fx, &alpha);
+    if (alpha < 0.5f) continue;
     depth[i] = depth_here;
-    rgbx[i] = shader.ShadePixel([at](int k) { return at[k]; }, fx);
+    rgbx[i] = colour;
   }
 }
 
@@ -392,7 +416,11 @@ void RasterizeTriangle(const TriangleSetup& t, const ShadeContext& context, cons
   };
   // Narrow triangles' pixels in blocks of any rows; the others' a row at a time.
   const auto fill = [&](const auto& shader) {
-    if (in_window) {
+    if (shader.cutout()) {
+      fill_rows([&](const float* at, float fx0, int n, float* depth, uint32_t* rgbx) {
+        FillSpanCutout(shader, planes, at, fx0, n, depth, rgbx);
+      });
+    } else if (in_window) {
       PixelBlocks blocks(shader, planes, t, target);
       FillRows(target, y_first, y_last, LaneSpans(t, x_first, x_last, y_first),
                [&](int y, int first, int last) { blocks.AddSpan(y, first, last); });

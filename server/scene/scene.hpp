@@ -6,6 +6,7 @@
 #include <string>
 
 #include "server/render/camera.hpp"
+#include "server/scene/design_file.hpp"
 #include "server/render/pattern.hpp"
 #include "server/render/sample_pattern.hpp"
 #include "server/render/shading_mode.hpp"
@@ -23,6 +24,10 @@ struct ServiceSettings {
   double time_scale = 1.0;
   render::ShadingMode shading = render::ShadingMode::kGouraud;
   render::FlagDesign design = render::FlagDesign::kNordicCross;  ///< what the flag shows
+  DesignFilePtr design_file;  ///< the image shown when design is kImage; else none
+  /// Whether the flag's width follows the design's aspect (a person's image); false once the
+  /// scene file or a PARAM command sets the width.
+  bool width_follows_design = true;
   render::Antialiasing antialias = render::Antialiasing::kMsaa4;  ///< samples per pixel of a frame
 };
 

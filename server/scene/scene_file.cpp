@@ -47,11 +47,38 @@ double Number(const toml::node& node, const std::string& what, const std::string
 void ReadParameters(const toml::table& table, const std::string& source, Scene* scene) {
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
+    if (name == "width") scene->service.width_follows_design = false;  // the scene sets it
+    if (name == "design") throw SceneError(Where(source, node) + "design goes at the top level: design = \"NAME\" or \"PATH\"");
     const std::string text = ValueText(node);
     const std::string problem = text.empty() ? name + ": not a number, switch or name"
                                              : ParameterTable::Get().Assign(name, text, scene);
     if (!problem.empty()) throw SceneError(Where(source, node) + problem);
   }
+}
+
+/// design = "NAME" (a built-in design) or "PATH" (an image file, relative to the scene file's
+/// folder).
+void ReadDesign(const toml::node& node, const std::string& source, Scene* scene) {
+  const auto value = node.value<std::string>();
+  if (!value || value->empty())
+    throw SceneError(Where(source, node) + "design must be a string: a built-in design's name or an image's path");
+  const std::vector<std::string>& names = render::FlagDesignNames();
+  const bool built_in = std::find(names.begin(), names.end(), *value) != names.end();
+  if (built_in && *value != "image") {
+    const std::string problem = ParameterTable::Get().Assign("design", *value, scene);
+    if (!problem.empty()) throw SceneError(Where(source, node) + problem);
+    return;
+  }
+  std::filesystem::path path(*value);
+  if (path.is_relative()) path = std::filesystem::path(source).parent_path() / path;
+  const std::string problem = LoadDesignFile(path.string(), &scene->service.design_file);
+  if (!problem.empty()) {
+    std::string known;
+    for (size_t i = 0; i + 1 < names.size(); ++i) known += (known.empty() ? "" : ", ") + names[i];
+    throw SceneError(Where(source, node) + "design: not a built-in design (" + known + ") nor a readable image: " +
+                     problem);
+  }
+  scene->service.design = render::FlagDesign::kImage;
 }
 
 void ReadWind(const toml::table& table, const std::string& source, Scene* scene) {
@@ -284,10 +311,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
       }
       scene.settle = *value;
     } else if (name == "design") {
-      const auto value = node.value<std::string>();
-      if (!value) throw SceneError(Where(source, node) + "design must be a string: the name of a built-in design");
-      const std::string problem = ParameterTable::Get().Assign("design", *value, &scene);
-      if (!problem.empty()) throw SceneError(Where(source, node) + problem);
+      ReadDesign(node, source, &scene);
     } else if (name == "parameters") {
       ReadParameters(Table(node, name, source), source, &scene);
     } else if (name == "wind") {
@@ -302,6 +326,8 @@ Scene ParseScene(const std::string& text, const std::string& source) {
           "'; known: name, description, seed, settle, design, [parameters], [wind], [camera], [timeline]");
     }
   }
+  const DesignFilePtr& image = scene.service.design_file;
+  if (image && scene.service.width_follows_design) scene.sim.width = image->WidthFor(scene.sim.height);
   ParameterTable::SettleAutoModel(&scene);
   std::string problem = ParameterTable::CheckConsistency(scene);
   if (!problem.empty()) throw SceneError(source + ": " + problem);

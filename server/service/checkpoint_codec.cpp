@@ -5,6 +5,7 @@
 
 #include "server/render/camera_moves.hpp"
 #include "server/scene/parameter_table.hpp"
+#include "common/printable_text.hpp"
 #include "server/scene/scene_timeline.hpp"
 #include "server/service/command_apply.hpp"
 #include "server/service/message_builders.hpp"
@@ -52,6 +53,11 @@ scene_t MakeSceneMessage(const Scene& scene) {
   message.camera_width = camera.width;
   message.camera_height = camera.height;
   for (int i = 0; i < 16; ++i) message.camera_transform[i] = camera.scene.matrix()(i / 4, i % 4);
+  if (const DesignFilePtr& image = scene.service.design_file) {
+    message.design_file = image->digest;
+    message.design_file_name = image->name;
+  }
+  message.width_follows_design = scene.service.width_follows_design;
   message.timeline = MakeTimelineMessage(scene.timeline, 0, 0);
   if (const auto& glide = scene.timeline.glide()) {
     message.glide_elapsed = glide->elapsed;
@@ -211,7 +217,22 @@ std::string ReadCamera(const scene_t& message, const std::string& field, render:
   return "";
 }
 
-std::string ReadScene(const scene_t& message, const std::string& field, Scene* scene) {
+/// The design's image the scene names, from `designs`; "" or what is missing.
+std::string ReadDesignFile(const scene_t& message, const std::string& field, const DesignLibrary* designs,
+                           Scene* scene) {
+  const bool image = scene->service.design == render::FlagDesign::kImage;
+  if (message.design_file.empty()) return image ? field + ".design_file: design=image names no image" : "";
+  if (!image) return field + ".design_file: an image is named, but the design is not image";
+  scene->service.design_file = designs != nullptr ? designs->Find(message.design_file) : nullptr;
+  if (!scene->service.design_file)
+    return field + ".design_file: the image " + PrintableText(message.design_file_name, 128) + " (SHA-256 " +
+           PrintableText(message.design_file, 64) +
+           ") is not at hand: a recording holds it on DESIGN_FILE before the checkpoint";
+  return "";
+}
+
+std::string ReadScene(const scene_t& message, const std::string& field, const DesignLibrary* designs,
+                      Scene* scene) {
   Scene read;
   read.name = message.name;
   read.seed = static_cast<uint64_t>(message.seed);
@@ -226,6 +247,8 @@ std::string ReadScene(const scene_t& message, const std::string& field, Scene* s
   read.wind.ramp_time = message.wind_ramp_time;
   if (problem.empty()) problem = ParameterTable::CheckWind(read.wind);
   if (problem.empty()) problem = ReadCamera(message, field, &read.camera);
+  if (problem.empty()) problem = ReadDesignFile(message, field, designs, &read);
+  read.service.width_follows_design = message.width_follows_design;
   if (problem.empty()) problem = ParameterTable::CheckConsistency(read);
   if (problem.empty()) problem = ReadTimeline(message, field, &read);
   if (!problem.empty()) return problem;
@@ -430,10 +453,10 @@ checkpoint_t MakeCheckpointMessage(const SessionSnapshot& snapshot, const std::s
   return message;
 }
 
-std::string ReadCheckpoint(const checkpoint_t& message, SessionSnapshot* snapshot) {
+std::string ReadCheckpoint(const checkpoint_t& message, SessionSnapshot* snapshot, const DesignLibrary* designs) {
   SessionSnapshot read;
-  std::string problem = ReadScene(message.scene, "scene", &read.scene);
-  if (problem.empty()) problem = ReadScene(message.initial, "initial", &read.initial);
+  std::string problem = ReadScene(message.scene, "scene", designs, &read.scene);
+  if (problem.empty()) problem = ReadScene(message.initial, "initial", designs, &read.initial);
   if (problem.empty()) problem = ReadSimulation(message, read.scene, &read.simulation);
   if (problem.empty() && message.timeline_segment < -1)
     problem = "timeline_segment: " + std::to_string(message.timeline_segment) + "; allowed -1 and up";

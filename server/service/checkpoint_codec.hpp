@@ -8,6 +8,7 @@
 #include <string>
 
 #include "flagsim/checkpoint_t.hpp"
+#include "server/service/design_assembly.hpp"
 #include "server/service/session.hpp"
 
 namespace flagsim {
@@ -16,6 +17,8 @@ namespace flagsim {
 checkpoint_t MakeCheckpointMessage(const SessionSnapshot& snapshot, const std::string& reason, int64_t utime);
 
 /// "" and `*snapshot` filled, or what is wrong with the message (then `*snapshot` is untouched).
-std::string ReadCheckpoint(const checkpoint_t& message, SessionSnapshot* snapshot);
+/// A scene showing a person's image names it by digest: `designs` has to hold it.
+std::string ReadCheckpoint(const checkpoint_t& message, SessionSnapshot* snapshot,
+                           const DesignLibrary* designs = nullptr);
 
 }  // namespace flagsim

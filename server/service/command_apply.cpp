@@ -193,8 +193,8 @@ std::string TimeControlOf(const time_command_t& command, TimeControl* control) {
   }
 }
 
-std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint8_t>& data,
-                              Session* session) {
+std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint8_t>& data, Session* session,
+                              const DesignLibrary* designs) {
   if (channel == "WIND") {
     return DecodeAndApply<wind_command_t>(data, [&](const auto& c) { return session->ApplyWind(WindOf(c)); });
   }
@@ -227,8 +227,18 @@ std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint
       return problem.empty() ? session->ApplyModel(model) : problem;
     });
   }
+  if (channel == "DESIGN") {
+    return DecodeAndApply<design_piece_t>(data, [&](const auto& c) {
+      const DesignFilePtr file = designs != nullptr ? designs->Find(c.digest) : nullptr;
+      if (!file)
+        return "DESIGN: the image " + PrintableText(c.name, 128) + " (SHA-256 " + PrintableText(c.digest, 64) +
+               ") is not at hand: a recording holds it on DESIGN_FILE before the command";
+      return session->ApplyDesign(file);
+    });
+  }
   if (channel == "REFRESH") return DecodeAndApply<refresh_request_t>(data, [](const auto&) { return ""; });
-  return "channel " + channel + ": not a command channel; allowed WIND, PARAM, CAMERA, KEYFRAME, TIME, MODEL, REFRESH";
+  return "channel " + channel +
+         ": not a command channel; allowed WIND, PARAM, CAMERA, KEYFRAME, TIME, DESIGN, MODEL, REFRESH";
 }
 
 }  // namespace flagsim

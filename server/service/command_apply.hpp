@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "flagsim/camera_command_t.hpp"
+#include "flagsim/design_piece_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
 #include "flagsim/model_t.hpp"
 #include "flagsim/param_command_t.hpp"
@@ -15,6 +16,7 @@
 #include "flagsim/timeline_key_t.hpp"
 #include "flagsim/wind_command_t.hpp"
 #include "server/model/auto_model.hpp"
+#include "server/service/design_assembly.hpp"
 #include "server/service/session.hpp"
 
 namespace flagsim {
@@ -39,8 +41,11 @@ std::string ModelSwitchOf(const model_t& message, ModelSwitch* model);
 model_t ModelMessageOf(const model::ModelDecision& decision, int64_t utime);
 
 /// Decodes `data` as the command type of `channel` (unprefixed: WIND, PARAM, CAMERA, KEYFRAME,
-/// TIME, and MODEL, auto's decisions as the journal holds them; REFRESH changes nothing here) and applies it to `session`. Returns "" or why it could not be
-/// decoded or was rejected (then the session is unchanged).
-std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint8_t>& data, Session* session);
+/// TIME, DESIGN, and MODEL, auto's decisions as the journal holds them; REFRESH changes nothing
+/// here) and applies it to `session`. A DESIGN command is the piece that completed its file, which
+/// `designs` holds. Returns "" or why it could not be decoded or was rejected (then the session
+/// is unchanged).
+std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint8_t>& data, Session* session,
+                              const DesignLibrary* designs = nullptr);
 
 }  // namespace flagsim

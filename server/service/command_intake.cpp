@@ -88,6 +88,7 @@ CommandIntake::CommandIntake(Bus& bus, const Channels& channels, Session& sessio
   Subscribe<camera_command_t>(channels.camera, &CommandIntake::ApplyCamera);
   Subscribe<keyframe_command_t>(channels.keyframe, &CommandIntake::ApplyKeyframe);
   Subscribe<time_command_t>(channels.time, &CommandIntake::ApplyTime);
+  Subscribe<design_piece_t>(channels.design, &CommandIntake::ApplyDesignPiece);
 }
 
 template <class Command>
@@ -132,13 +133,17 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
   if (!ack.reason.empty()) ack.client_id = PrintableText(command->client_id, kMaxClientIdLength);
   const int64_t recoveries = session_.simulation().recoveries();
   note_.clear();
+  design_shown_.reset();
   if (ack.reason.empty()) ack.reason = (this->*apply)(*command);
   ack.accepted = ack.reason.empty();
   if (ack.accepted) ack.reason = note_;
   if (question) return Answer(ack, recoveries);  // answered, not counted or logged as a command
   if (ack.accepted) {
-    // What changes the session goes into the journal; a REFRESH changes nothing.
-    if (journal_ != nullptr && channel != channels_.refresh)
+    // What changes the session goes into the journal; a REFRESH changes nothing, nor does a
+    // DESIGN piece until it completes its file, which goes out whole first.
+    const bool changed = channel != channels_.refresh && (channel != channels_.design || design_shown_);
+    if (journal_ != nullptr && design_shown_) journal_->DesignFile(*design_shown_, command->client_id, UnixMicros());
+    if (journal_ != nullptr && changed)
       journal_->Applied(session_, channel, data, size, {command->client_id, command->key_id}, UnixMicros());
     ++stats_.commands_accepted;
     spdlog::info("{} from {} #{}: accepted at step {}", ack.channel, ack.client_id, ack.sequence, ack.step);
@@ -240,6 +245,29 @@ std::string CommandIntake::ApplyTime(const time_command_t& command) {
   TimeControl control;
   const std::string problem = TimeControlOf(command, &control);
   return problem.empty() ? session_.ApplyTime(control) : problem;
+}
+
+// piece => held => whole and matching its digest? => decoded within the limits => shown
+std::string CommandIntake::ApplyDesignPiece(const design_piece_t& piece) {
+  DesignAssembly::Outcome outcome = designs_.Add(piece);
+  if (!outcome.problem.empty()) return outcome.problem;
+  if (!outcome.whole) {
+    note_ = "held " + std::to_string(outcome.held) + " of " + std::to_string(piece.total_bytes) + " bytes of " +
+            piece.name;
+    return "";
+  }
+  DesignFilePtr file;
+  std::string problem = MakeDesignFile(piece.name, std::move(outcome.bytes), &file);
+  if (!problem.empty()) return piece.name + ": " + problem;
+  problem = session_.ApplyDesign(file);
+  if (!problem.empty()) return piece.name + ": " + problem;
+  design_shown_ = file;
+  params_changed_ = true;
+  char size[96];
+  std::snprintf(size, sizeof(size), " (%d x %d px), the flag %.3g m wide", file->width, file->height,
+                session_.scene().sim.width);
+  note_ = "design " + file->name + size;
+  return "";
 }
 
 static_assert(std::tuple_size_v<decltype(ServerStats::commands_refused)> ==

@@ -1,4 +1,4 @@
-// Command intake: the server's command channels (WIND, PARAM, CAMERA, KEYFRAME, TIME, REFRESH). Each message is
+// Command intake: the server's command channels (WIND, PARAM, CAMERA, KEYFRAME, TIME, DESIGN, REFRESH). Each message is
 // decoded from raw bytes with every length checked (wire::CheckedDecode), checked for its signature when
 // the server has keys (command_authenticator.hpp), answered on ACK, and applied to the session only if
 // valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the server. A retry
@@ -26,6 +26,7 @@
 
 #include "flagsim/ack_t.hpp"
 #include "flagsim/camera_command_t.hpp"
+#include "flagsim/design_piece_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
 #include "flagsim/param_command_t.hpp"
 #include "flagsim/refresh_request_t.hpp"
@@ -36,6 +37,7 @@
 #include "messages/command_key.hpp"
 #include "messages/utime.hpp"
 #include "server/service/command_authenticator.hpp"
+#include "server/service/design_assembly.hpp"
 #include "server/service/journal.hpp"
 #include "server/service/server_presence.hpp"
 #include "server/service/server_stats.hpp"
@@ -101,6 +103,7 @@ class CommandIntake {
   std::string ApplyCamera(const camera_command_t& command);
   std::string ApplyKeyframe(const keyframe_command_t& command);
   std::string ApplyTime(const time_command_t& command);
+  std::string ApplyDesignPiece(const design_piece_t& piece);
 
   void Refuse(const std::string& channel, const std::string& client_id, int64_t sequence,
               const CommandAuthenticator::Verdict& verdict);
@@ -127,6 +130,8 @@ class CommandIntake {
   bool params_changed_ = false;
   bool timeline_changed_ = false;
   std::string note_;  ///< for the ACK of the command being applied, if it is accepted
+  DesignAssembly designs_;      ///< pieces of design files on their way
+  DesignFilePtr design_shown_;  ///< the file the DESIGN piece being applied completed, if it did
   int64_t refresh_request_ = -1;
   bool tables_request_ = false;
   double last_drop_log_ = -INFINITY;  ///< s on the clock: the last logged drop (logged once a second)

@@ -22,6 +22,7 @@ FrameInput FrameInput::Of(const Session& session, int64_t utime) {
   input.camera = session.scene().camera;
   input.shading = session.scene().service.shading;
   input.design = session.scene().service.design;
+  input.design_file = session.scene().service.design_file;
   input.antialias = session.scene().service.antialias;
   input.pole_height = session.scene().sim.pole_height;
   input.pole_radius = session.scene().sim.pole_radius;
@@ -32,11 +33,14 @@ FrameInput FrameInput::Of(const Session& session, int64_t utime) {
 // copied state => smooth surface, refined for the picture (the grid itself in wireframe) =>
 // flag mesh => frame
 const render::Framebuffer& FramePainter::Paint(const FrameInput& input, int threads) {
-  if (input.pole_height != pole_height_ || input.pole_radius != pole_radius_ || input.design != design_) {
+  if (input.pole_height != pole_height_ || input.pole_radius != pole_radius_ || input.design != design_ ||
+      input.design_file != design_file_) {
     scene_ = render::DefaultRenderScene(float(input.pole_height), float(input.pole_radius), input.design);
+    if (input.design_file) scene_.pattern = input.design_file->texture;
     pole_height_ = input.pole_height;
     pole_radius_ = input.pole_radius;
     design_ = input.design;
+    design_file_ = input.design_file;
   }
   grid_.cols = input.cols;
   grid_.rows = input.rows;

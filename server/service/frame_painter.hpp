@@ -29,6 +29,7 @@ struct FrameInput {
   render::Camera camera;
   render::ShadingMode shading = render::ShadingMode::kGouraud;
   render::FlagDesign design = render::FlagDesign::kNordicCross;
+  DesignFilePtr design_file;  ///< design kImage: the image
   render::Antialiasing antialias = render::Antialiasing::kOff;
   double pole_height = 0;  ///< m
   double pole_radius = 0;  ///< m
@@ -50,6 +51,7 @@ class FramePainter {
   render::RenderScene scene_;
   double pole_height_ = -1, pole_radius_ = -1;  ///< m, what scene_ was built for
   render::FlagDesign design_ = render::FlagDesign::kNordicCross;  ///< what scene_'s pattern shows
+  DesignFilePtr design_file_;                                      ///< the same
   render::Renderer renderer_;
   render::Framebuffer framebuffer_;
 };

@@ -1,6 +1,7 @@
 #include "server/service/journal.hpp"
 
 #include "flagsim/applied_command_t.hpp"
+#include "messages/design_pieces.hpp"
 #include "server/service/checkpoint_codec.hpp"
 
 namespace flagsim {
@@ -34,9 +35,23 @@ void Journal::Applied(const Session& session, const std::string& channel, const 
   publisher_->Publish(channels_.applied, message);
 }
 
+void Journal::DesignFile(const flagsim::DesignFile& file, const std::string& client_id, int64_t utime) {
+  if (publisher_ == nullptr) return;
+  for (const design_piece_t& piece : SplitDesignFile(file.name, file.digest, file.bytes, client_id, utime))
+    publisher_->Publish(channels_.design_file, piece);
+}
+
+// The design files the checkpoint names go first (a periodic or end checkpoint names the ones
+// sent before it).
 void Journal::PublishCheckpoint(const Session& session, const std::string& reason, int64_t utime) {
-  if (publisher_ != nullptr)
-    publisher_->Publish(channels_.checkpoint, MakeCheckpointMessage(session.Snapshot(), reason, utime));
+  if (publisher_ == nullptr) return;
+  if (reason != "periodic" && reason != "end") {
+    const DesignFilePtr& now = session.scene().service.design_file;
+    const DesignFilePtr& initial = session.initial_scene().service.design_file;
+    if (now) DesignFile(*now, "flagd", utime);
+    if (initial && (!now || initial->digest != now->digest)) DesignFile(*initial, "flagd", utime);
+  }
+  publisher_->Publish(channels_.checkpoint, MakeCheckpointMessage(session.Snapshot(), reason, utime));
 }
 
 }  // namespace flagsim

@@ -6,6 +6,10 @@
 //               request, and at the end
 //   APPLIED     each command that changed the session, as it came, with the step at whose
 //               start it took effect, in the order applied
+//   DESIGN_FILE a person's image (design_piece_t pieces) when it comes into force, before its
+//               APPLIED, and again before each start, refresh and resume CHECKPOINT taken while
+//               the scene or the scene it started from shows one, so that a replay from there
+//               has it
 //
 // A checkpoint is a pure read (it carries what the integrator, the guard and the sleep watch
 // carry between steps), so taking one changes nothing: replay (replay.hpp) resumes from any of
@@ -48,6 +52,8 @@ class Journal {
     std::string client_id;
     std::string key_id;
   };
+  /// A design file that came into force, sent by `client_id`: its pieces on DESIGN_FILE.
+  void DesignFile(const flagsim::DesignFile& file, const std::string& client_id, int64_t utime);
   /// A command `session` took at its current step: `channel` with the prefix, `data` as it came.
   void Applied(const Session& session, const std::string& channel, const uint8_t* data, size_t size,
                const Sender& sender, int64_t utime);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "flagsim/applied_command_t.hpp"
+#include "flagsim/design_piece_t.hpp"
 #include "flagsim/state_t.hpp"
 #include "messages/channels.hpp"
 #include "messages/checked_decode.hpp"
@@ -56,9 +57,15 @@ class Replayer {
   ReplayReport& report_;
   Channels channels_{options_.prefix};
   std::unique_ptr<Session> session_;
+  DesignLibrary designs_;  ///< the design files the log holds so far (DESIGN_FILE)
 };
 
 bool Replayer::Handle(const std::string& channel, const std::vector<uint8_t>& data) {
+  if (channel == channels_.design_file) {
+    const std::optional<design_piece_t> piece = Decode<design_piece_t>(data);
+    if (piece) designs_.Add(*piece);  // a bad one: whatever needs its file says so
+    return true;
+  }
   if (channel == channels_.checkpoint) {
     const std::optional<checkpoint_t> checkpoint = Decode<checkpoint_t>(data);
     if (!checkpoint) return true;  // a damaged one: the next will do
@@ -92,7 +99,7 @@ bool Replayer::Handle(const std::string& channel, const std::vector<uint8_t>& da
 
 bool Replayer::Resume(const checkpoint_t& checkpoint) {
   SessionSnapshot snapshot;
-  const std::string problem = ReadCheckpoint(checkpoint, &snapshot);
+  const std::string problem = ReadCheckpoint(checkpoint, &snapshot, &designs_);
   if (!problem.empty()) {
     report_.error = problem;
     return false;
@@ -137,7 +144,7 @@ bool Replayer::Apply(const applied_command_t& command) {
   }
   if (!AdvanceTo(command.step, channels_.applied)) return false;
   ++(command.channel == "MODEL" ? report_.model_switches : report_.commands);
-  const std::string problem = ApplyCommandBytes(command.channel, command.data, session_.get());
+  const std::string problem = ApplyCommandBytes(command.channel, command.data, session_.get(), &designs_);
   if (problem.empty()) return true;
   return Differ(command.step, command.channel + " at step " + std::to_string(command.step) +
                                   " was applied live but not in the replay: " + problem);
@@ -164,7 +171,8 @@ ReplayReport Replay(const std::string& path, const ReplayOptions& options,
   Replayer replayer(options, &report);
   const Channels channels(options.prefix);
   const auto wanted = [&channels](const std::string& channel) {
-    return channel == channels.checkpoint || channel == channels.applied || channel == channels.state;
+    return channel == channels.checkpoint || channel == channels.applied || channel == channels.state ||
+           channel == channels.design_file;
   };
   LogEvent event;
   int64_t events = 0;

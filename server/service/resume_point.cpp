@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "flagsim/applied_command_t.hpp"
+#include "flagsim/design_piece_t.hpp"
 #include "flagsim/state_t.hpp"
 #include "flagsim/status_t.hpp"
 #include "messages/channels.hpp"
@@ -29,6 +30,10 @@ class ResumeSearch {
   explicit ResumeSearch(ResumePoint* point) : point_(*point) {}
 
   void Checkpoint(const std::vector<uint8_t>& data);
+  /// A piece of a design file: checkpoints that show a person's image need it.
+  void DesignPiece(const std::vector<uint8_t>& data) {
+    if (const std::optional<design_piece_t> piece = Decode<design_piece_t>(data)) designs_.Add(*piece);
+  }
   void Applied(const std::vector<uint8_t>& data);
   /// A message that says where the server stood (STATUS, STATE).
   void Progress(int64_t step, double sim_time);
@@ -36,13 +41,14 @@ class ResumeSearch {
 
  private:
   ResumePoint& point_;
+  DesignLibrary designs_;
 };
 
 void ResumeSearch::Checkpoint(const std::vector<uint8_t>& data) {
   std::string problem;
   const std::optional<checkpoint_t> message = Decode<checkpoint_t>(data, &problem);
   SessionSnapshot snapshot;
-  if (message) problem = ReadCheckpoint(*message, &snapshot);
+  if (message) problem = ReadCheckpoint(*message, &snapshot, &designs_);
   if (!problem.empty()) {  // a damaged one: the last sound one stands, and the message says so
     ++point_.checkpoints_refused;
     point_.checkpoint_refusal = message ? problem : "a CHECKPOINT that does not decode: " + problem;
@@ -96,7 +102,7 @@ ResumePoint FindResumePoint(const std::string& path, const std::string& prefix) 
   const Channels channels(prefix);
   const auto wanted = [&channels](const std::string& channel) {
     return channel == channels.checkpoint || channel == channels.applied || channel == channels.status ||
-           channel == channels.state;
+           channel == channels.state || channel == channels.design_file;
   };
   ResumeSearch search(&point);
   LogEvent event;
@@ -105,6 +111,8 @@ ResumePoint FindResumePoint(const std::string& path, const std::string& prefix) 
       search.Checkpoint(event.data);
     } else if (event.channel == channels.applied) {
       search.Applied(event.data);
+    } else if (event.channel == channels.design_file) {
+      search.DesignPiece(event.data);
     } else if (event.channel == channels.status) {
       if (const std::optional<status_t> status = Decode<status_t>(event.data))
         search.Progress(status->step, status->sim_time);

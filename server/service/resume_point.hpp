@@ -7,6 +7,7 @@
 //                 was counted after the last is forgotten; one that is not is counted and its
 //                 refusal kept, for the message
 //     APPLIED     a command after the resume point: lost
+//     DESIGN_FILE pieces of a person's image, which a checkpoint showing it needs
 //     STATUS      (once a second in an inputs log), STATE, APPLIED: how far the server had got,
 //                 in steps and simulated seconds
 //

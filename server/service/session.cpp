@@ -1,6 +1,7 @@
 #include "server/service/session.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <utility>
 
 #include "server/render/camera_on_flag.hpp"
@@ -9,6 +10,25 @@
 
 namespace flagsim {
 namespace {
+
+/// The design's image after assignments to `scene` (from `before`): dropped with a built-in
+/// design, whose aspect the width goes back to if it follows the design; required by
+/// design=image. "" or what is wrong.
+std::string FollowDesign(const ServiceSettings& before, Scene* scene) {
+  ServiceSettings& service = scene->service;
+  if (service.design != render::FlagDesign::kImage) {
+    if (before.design == render::FlagDesign::kImage && service.width_follows_design)
+      scene->sim.width = std::clamp(scene->sim.height * render::kBuiltInDesignAspect, 0.1, 10.0);
+    service.design_file.reset();
+    return "";
+  }
+  if (service.design_file) return "";
+  std::string built_in;
+  for (const std::string& name : render::FlagDesignNames())
+    if (name != "image") built_in += (built_in.empty() ? "" : ", ") + name;
+  return "design: image shows a person's own image, which comes as a file (flagctl design FILE); "
+         "by name, allowed: " + built_in;
+}
 
 /// The scene as a playing timeline starts it: its controls at its position applied.
 Scene AtTimelineStart(Scene scene) {
@@ -143,7 +163,20 @@ std::string Session::ApplyWind(const sim::WindSettings& wind) {
   return "";
 }
 
-std::string Session::ApplyParams(const ParamChange& change) {
+std::string Session::ApplyParams(const ParamChange& change) { return Change(change, nullptr); }
+
+std::string Session::ApplyDesign(const DesignFilePtr& file) {
+  ParamChange change;
+  change.assignments = {{"design", "image"}};
+  if (scene_.service.width_follows_design) {
+    char width[32];
+    std::snprintf(width, sizeof(width), "%.17g", file->WidthFor(scene_.sim.height));
+    change.assignments.emplace_back("width", width);
+  }
+  return Change(change, file);
+}
+
+std::string Session::Change(const ParamChange& change, const DesignFilePtr& image) {
   if (change.assignments.size() > kMaxAssignments) {
     return "num_assignments: " + std::to_string(change.assignments.size()) +
            " is out of range; allowed 0 .. " + std::to_string(kMaxAssignments);
@@ -160,7 +193,11 @@ std::string Session::ApplyParams(const ParamChange& change) {
   for (const auto& [name, value] : change.assignments) {
     const std::string problem = ParameterTable::Get().Assign(name, value, &next);
     if (!problem.empty()) problems += (problems.empty() ? "" : "; ") + problem;
+    if (name == "width" && !image) next.service.width_follows_design = false;  // a person set it
   }
+  if (image) next.service.design_file = image;
+  const std::string design_problem = FollowDesign(scene_.service, &next);
+  if (!design_problem.empty()) problems += (problems.empty() ? "" : "; ") + design_problem;
   ParameterTable::SettleAutoModel(&next);
   if (problems.empty()) problems = ParameterTable::CheckConsistency(next);
   if (problems.empty() && !change.reset_to_scene) {  // the keys must suit the new settings too

@@ -85,7 +85,11 @@ class Session {
   /// Applies a wind setting; returns "" or why it was rejected (then nothing changed).
   std::string ApplyWind(const sim::WindSettings& wind);
   /// Applies parameter assignments as one change; returns "" or every reason it was rejected.
+  /// An assignment of the width pins it: a design's image no longer sets it.
   std::string ApplyParams(const ParamChange& change);
+  /// Shows a person's image on the flag (design=image), with the width at its aspect unless
+  /// pinned; "" or why not (then nothing changed).
+  std::string ApplyDesign(const DesignFilePtr& file);
 
   /// Switches to auto's decision where auto is on: the integrator and its iterations under
   /// integrator=auto, the grid under cols=auto. "" or why not (then nothing changed). A grid
@@ -135,6 +139,8 @@ class Session {
   /// The flag's nodes now, for the camera moves that aim at it (render/camera_on_flag.hpp).
   render::FlagSurface FlagSurfaceNow() const;
   static constexpr int kNoSegment = -1;
+  /// ApplyParams, with `image` as the design's image (null: the one in force).
+  std::string Change(const ParamChange& change, const DesignFilePtr& image);
   void FollowTimeline();
   void ApplyTimelineControls();
   void FixSubsteps(double position);

@@ -18,16 +18,16 @@ TEST(Channels, APrefixIsLettersDigitsAndUnderscores) {
   EXPECT_EQ(Channels::CheckPrefix("lab_2"), "");
   const std::string longest(Channels::kMaxPrefixLength, 'P');
   EXPECT_EQ(Channels::CheckPrefix(longest), "");
-  EXPECT_LE(Channels(longest).checkpoint.size(), 63u);  // LCM_MAX_CHANNEL_NAME_LENGTH
-  EXPECT_EQ(Channels::CheckPrefix(""), "'' is 0 characters; allowed 1 .. 53 letters, digits and '_'");
+  EXPECT_LE(Channels(longest).design_file.size(), 63u);  // LCM_MAX_CHANNEL_NAME_LENGTH
+  EXPECT_EQ(Channels::CheckPrefix(""), "'' is 0 characters; allowed 1 .. 52 letters, digits and '_'");
   EXPECT_EQ(Channels::CheckPrefix(longest + "P"),
-            "'" + longest + "P' is 54 characters; allowed 1 .. 53 letters, digits and '_'");
+            "'" + longest + "P' is 53 characters; allowed 1 .. 52 letters, digits and '_'");
   EXPECT_EQ(Channels::CheckPrefix("my-prefix"),
-            "'my-prefix' is not a channel prefix; allowed 1 .. 53 letters, digits and '_'");
+            "'my-prefix' is not a channel prefix; allowed 1 .. 52 letters, digits and '_'");
   for (const std::string bad : {"A.B", "A B", "A*", "A/B", "\xc3\xbc", "A\x1b"})
     EXPECT_NE(Channels::CheckPrefix(bad).find("is not a channel prefix"), std::string::npos) << bad;
   EXPECT_EQ(Channels::CheckPrefix("A\x1b"),
-            "'A\\x1b' is not a channel prefix; allowed 1 .. 53 letters, digits and '_'");
+            "'A\\x1b' is not a channel prefix; allowed 1 .. 52 letters, digits and '_'");
 }
 
 }  // namespace
