@@ -94,13 +94,13 @@ std::string MakeDesignFile(const std::string& name, std::vector<uint8_t> bytes, 
 std::string LoadDesignFile(const std::string& path, DesignFilePtr* file) {
   std::error_code error;
   const uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) return "cannot read the design " + path + ": " + error.message();
+  if (error) return "cannot read " + path + ": " + error.message();
   if (size > kMaxDesignFileBytes)
     return path + ": the file is " + std::to_string(size) + " bytes; allowed: " + DesignLimits();
   std::ifstream in(path, std::ios::binary);
   std::vector<uint8_t> bytes(size);
   if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
-    return "cannot read the design " + path;
+    return "cannot read " + path;
   const std::string problem = MakeDesignFile(std::filesystem::path(path).filename().string(), std::move(bytes), file);
   return problem.empty() ? "" : path + ": " + problem;
 }

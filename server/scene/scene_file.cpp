@@ -75,8 +75,8 @@ void ReadDesign(const toml::node& node, const std::string& source, Scene* scene)
   if (!problem.empty()) {
     std::string known;
     for (size_t i = 0; i + 1 < names.size(); ++i) known += (known.empty() ? "" : ", ") + names[i];
-    throw SceneError(Where(source, node) + "design: not a built-in design (" + known + ") nor a readable image: " +
-                     problem);
+    throw SceneError(Where(source, node) + "design: '" + *value + "' is neither a built-in design (" + known +
+                     ") nor an image file: " + problem);
   }
   scene->service.design = render::FlagDesign::kImage;
 }

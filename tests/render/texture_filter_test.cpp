@@ -94,3 +94,31 @@ TEST(TextureFilter, BetweenTwoLevelsTheyBlendLinearly) {
 
 }  // namespace
 }  // namespace flagsim::render
+
+namespace flagsim::render {
+namespace {
+
+TEST(TextureFilter, TransparentTexelsLendNoColourAndAlphaBlends) {
+  // Left texel red and transparent, right texel blue and opaque: halfway between their centres
+  // alpha is 1/2, and the straight colour is all blue (premultiplied filtering).
+  Texture texture;
+  texture.width = 2;
+  texture.height = 1;
+  texture.rgb = {255, 0, 0, 0, 0, 255};
+  texture.alpha = {0, 255};
+  FilteredTexture filtered;
+  filtered.Assign(texture);
+  EXPECT_TRUE(filtered.has_alpha());
+  float rgb[3], alpha = 0;
+  filtered.SamplerAt(0).SampleStraight(0.5f, 0.5f, rgb, &alpha);
+  EXPECT_FLOAT_EQ(alpha, 0.5f);
+  EXPECT_FLOAT_EQ(rgb[0], 0);
+  EXPECT_FLOAT_EQ(rgb[1], 0);
+  EXPECT_FLOAT_EQ(rgb[2], 1);
+  texture.alpha.clear();  // opaque: no alpha, and the colour as it was
+  filtered.Assign(texture);
+  EXPECT_FALSE(filtered.has_alpha());
+}
+
+}  // namespace
+}  // namespace flagsim::render

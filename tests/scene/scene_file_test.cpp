@@ -89,8 +89,10 @@ TEST(SceneFile, ADesignIsChosenByNameAtTheTopLevel) {
   EXPECT_EQ(ParseScene("design = \"tricolour\"\n", "test.toml").service.design, render::FlagDesign::kTricolour);
   EXPECT_EQ(ParseScene("name = \"x\"\n", "test.toml").service.design, render::FlagDesign::kNordicCross);
   EXPECT_EQ(ErrorOf("design = \"union_jack\"\n"),
-            "test.toml:1: design: 'union_jack' is not a known name; allowed one of: nordic_cross, tricolour, checker");
-  EXPECT_EQ(ErrorOf("design = 3\n"), "test.toml:1: design must be a string: the name of a built-in design");
+            "test.toml:1: design: 'union_jack' is neither a built-in design (nordic_cross, tricolour, checker) nor "
+            "an image file: cannot read union_jack: No such file or directory");
+  EXPECT_EQ(ErrorOf("design = 3\n"), "test.toml:1: design must be a string: a built-in design's name or an image's path");
+  ExpectError(ErrorOf("design = \"image\"\n"), "cannot read image");
 }
 
 TEST(SceneFile, ReadsATimeline) {
