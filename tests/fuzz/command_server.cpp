@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "flagsim/design_piece_t.hpp"
 #include "flagsim/ack_t.hpp"
 #include "flagsim/applied_command_t.hpp"
 #include "flagsim/checkpoint_t.hpp"
@@ -67,6 +68,9 @@ CommandServer::CommandServer(Bus& bus, const Channels& channels, std::vector<Com
   });
   bus.Subscribe(channels.applied,
                 [this](const std::string&, const uint8_t* data, size_t size) { Replay(data, size); });
+  bus.Subscribe(channels.design_file, [this](const std::string&, const uint8_t* data, size_t size) {
+    Require(designs_.Add(Decoded<design_piece_t>(data, size)).empty(), "a DESIGN_FILE piece is refused");
+  });
   journal_.AtBoundary(session_, UnixMicros());  // the first checkpoint, as the server's first tick
 }
 
@@ -98,8 +102,8 @@ void CommandServer::CheckAck(const uint8_t* data, size_t size) { Decoded<ack_t>(
 void CommandServer::CheckCheckpoint(const uint8_t* data, size_t size) {
   const checkpoint_t checkpoint = Decoded<checkpoint_t>(data, size);
   SessionSnapshot snapshot;
-  Require(ReadCheckpoint(checkpoint, &snapshot).empty(),
-          "a CHECKPOINT the server published does not read back", ReadCheckpoint(checkpoint, &snapshot));
+  const std::string problem = ReadCheckpoint(checkpoint, &snapshot, &designs_);
+  Require(problem.empty(), "a CHECKPOINT the server published does not read back", problem);
 }
 
 // APPLIED => the same command, at the same step, into the replayed session
@@ -107,7 +111,7 @@ void CommandServer::Replay(const uint8_t* data, size_t size) {
   const applied_command_t applied = Decoded<applied_command_t>(data, size);
   Require(applied.step == replayed_.simulation().state().step,
           "APPLIED names another step than the session's", std::to_string(applied.step));
-  const std::string problem = ApplyCommandBytes(applied.channel, applied.data, &replayed_);
+  const std::string problem = ApplyCommandBytes(applied.channel, applied.data, &replayed_, &designs_);
   Require(problem.empty(), "a command the server applied is refused in the replay", problem);
 }
 

@@ -5,6 +5,7 @@
 // It also checks what the server publishes, as its readers will take it:
 //   ACK, APPLIED, CHECKPOINT   each passes the server's own checked decode
 //   CHECKPOINT                 reads back (ReadCheckpoint): replay resumes from any of them
+//   DESIGN_FILE                makes a whole design file: what replay shows a design from
 //   APPLIED                    applied to a second session at the same step, it is accepted,
 //                              and that session ends with the same state hash: what flagd
 //                              replay does with a recording
@@ -67,6 +68,7 @@ class CommandServer {
   Journal journal_;
   CommandIntake intake_;
   Session replayed_;  ///< steps with the session, taking only what APPLIED says
+  DesignLibrary designs_;  ///< the design files published on DESIGN_FILE, for the replay
 };
 
 }  // namespace flagsim::fuzz

@@ -3,10 +3,12 @@
 #include <cmath>
 
 #include "client/command_client.hpp"
+#include "client/design_upload.hpp"
 #include "client/log_recorder.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
 #include "server/service/server.hpp"
+#include "tests/common/test_images.hpp"
 #include "tests/fuzz/command_server.hpp"
 
 namespace flagsim::fuzz {
@@ -122,6 +124,9 @@ void RecordSession(const std::string& log_path) {
   client.Send(channels.time, Time(time_command_t::RESUME));
   client.Send(channels.refresh, Question());
   client.Send(channels.param, Param({{"stiffness", "bogus"}}));  // rejected: an ACK with a reason
+  std::vector<uint8_t> pennant = testing::SolidRgba(12, 6, 200, 30, 40);
+  for (size_t i = 3; i < pennant.size(); i += 16) pennant[i] = 0;  // some pixels transparent
+  SendDesignFile(client, channels.design, "pennant.png", testing::PngBytes(12, 6, pennant));
   for (int tick = 0; tick < 60; ++tick) {  // 0.25 s more of the clock: states, frames, the timeline
     now += 1.0 / 240;
     server.Tick(now);

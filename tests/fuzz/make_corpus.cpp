@@ -26,6 +26,7 @@
 
 #include "client/gateway/foxglove_wire.hpp"
 #include "client/gateway/gateway_catalog.hpp"
+#include "common/jpeg_file.hpp"
 #include "common/png_file.hpp"
 #include "flagsim/camera_command_t.hpp"
 #include "flagsim/keyframe_command_t.hpp"
@@ -81,7 +82,7 @@ void CommandSeeds(const std::vector<LogEvent>& events, const Channels& channels)
   const std::map<std::string, uint8_t> selector = {{channels.wind, 0},    {channels.param, 1},
                                                    {channels.camera, 2},  {channels.keyframe, 3},
                                                    {channels.refresh, 4}, {channels.status, 5},
-                                                   {channels.time, 6}};
+                                                   {channels.time, 6},    {channels.design, 7}};
   std::vector<Bytes> in_order, signed_in_order;
   std::map<std::string, int> count;
   for (const LogEvent& event : events) {
@@ -371,6 +372,16 @@ void PngSeeds() {
   fs::remove(scratch);
 }
 
+/// The design image target: the PNG target's seeds, and a JPEG (baseline, as libjpeg writes it).
+void DesignImageSeeds() {
+  for (const fs::directory_entry& entry : fs::directory_iterator(g_corpus / "png"))
+    Write("design_image", entry.path().filename().string(), ReadFile(entry.path()));
+  std::vector<uint8_t> rgb(12 * 8 * 3);
+  for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = uint8_t(i * 11);
+  const std::string jpeg = EncodeJpeg(rgb.data(), 12, 8, 90);
+  Write("design_image", "rgb_12x8.jpg", Bytes(jpeg.begin(), jpeg.end()));
+}
+
 /// The key file target: one flagctl keygen writes, and one with two keys and comments.
 void KeyFileSeeds() {
   const fs::path scratch =
@@ -411,6 +422,7 @@ int main(int argc, char** argv) {
   HttpSeeds();
   SceneSeeds(source);
   PngSeeds();
+  DesignImageSeeds();
   KeyFileSeeds();
   size_t files = 0, bytes = 0;
   for (const fs::directory_entry& entry : fs::recursive_directory_iterator(g_corpus)) {

@@ -2,8 +2,9 @@
 // the input (fuzz_records.hpp) is one message, published on an in-process bus (memq://) on the
 // channel its selector picks:
 //
-//   (selector & 0x7f) % 6   0 WIND  1 PARAM  2 CAMERA  3 KEYFRAME  4 REFRESH   (command_intake.hpp)
+//   (selector & 0x7f) % 8   0 WIND  1 PARAM  2 CAMERA  3 KEYFRAME  4 REFRESH   (command_intake.hpp)
 //                          5 STATUS (another server's, as server_presence.hpp hears it)
+//                          6 TIME  7 DESIGN (a piece of a person's image)
 //   selector & 0x80  after it, the session steps once (a playing timeline, settling ACKs)
 //
 // and taken as flagd takes it: checked decode, validation, apply, ACK, journal. What the server
@@ -26,11 +27,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const Channels channels;
   fuzz::CommandServer server(bus, channels);
   const std::string* const targets[] = {&channels.wind,    &channels.param,  &channels.camera, &channels.keyframe,
-                                        &channels.refresh, &channels.status, &channels.time};
+                                        &channels.refresh, &channels.status, &channels.time,     &channels.design};
   fuzz::Records records(data, size);
   fuzz::Record record;
   while (records.Next(&record)) {
-    bus.Publish(*targets[(record.selector & 0x7f) % 7], record.data, record.size);
+    bus.Publish(*targets[(record.selector & 0x7f) % 8], record.data, record.size);
     server.HandleAll();
     if (record.selector & 0x80) server.Step();
   }

@@ -2,7 +2,8 @@
 // MAC, freshness and replay (command_authenticator.hpp), through the real intake on an
 // in-process bus. Each record of the input (fuzz_records.hpp) is one command:
 //
-//   selector       (selector & 0x7f) % 5: 0 WIND  1 PARAM  2 CAMERA  3 KEYFRAME  4 REFRESH;
+//   selector       (selector & 0x7f) % 8: 0 WIND  1 PARAM  2 CAMERA  3 KEYFRAME  4, 5 REFRESH
+//                  6 TIME  7 DESIGN;
 //                  & 0x80: the session steps once after it
 //   bytes          how (1 byte) | utime offset (4 bytes, ms, little-endian, signed) | command
 //
@@ -97,6 +98,7 @@ std::vector<uint8_t> Stamp(const Channels& channels, const std::string& channel,
   if (channel == channels.camera) return Stamp<camera_command_t>(channel, envelope, bytes, size);
   if (channel == channels.keyframe) return Stamp<keyframe_command_t>(channel, envelope, bytes, size);
   if (channel == channels.time) return Stamp<time_command_t>(channel, envelope, bytes, size);
+  if (channel == channels.design) return Stamp<design_piece_t>(channel, envelope, bytes, size);
   return Stamp<refresh_request_t>(channel, envelope, bytes, size);
 }
 
@@ -110,7 +112,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::CommandServer server(bus, channels, {Keys()[0], Keys()[1]});
   // The selectors of server_commands (make_corpus.cpp); its STATUS slot is a REFRESH here.
   const std::string* const targets[] = {&channels.wind,    &channels.param,   &channels.camera, &channels.keyframe,
-                                        &channels.refresh, &channels.refresh, &channels.time};
+                                        &channels.refresh, &channels.refresh, &channels.time,     &channels.design};
   std::string last_channel;
   std::vector<uint8_t> last_sent;
   fuzz::Records records(data, size);
@@ -119,7 +121,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Envelope envelope;
     if (!ReadEnvelope(record, &envelope)) continue;
     if (!envelope.again || last_sent.empty()) {
-      last_channel = *targets[(record.selector & 0x7f) % 7];
+      last_channel = *targets[(record.selector & 0x7f) % 8];
       last_sent = Stamp(channels, last_channel, envelope, record.data + 5, record.size - 5);
     }
     bus.Publish(last_channel, last_sent.data(), last_sent.size());
