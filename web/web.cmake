@@ -27,6 +27,8 @@ set(web_sources
   ${web_dir}/src/camera_math.js
   ${web_dir}/src/camera_panel.js
   ${web_dir}/src/connection.js
+  ${web_dir}/src/design_panel.js
+  ${web_dir}/src/design_upload.js
   ${web_dir}/src/dom.js
   ${web_dir}/src/frame_image.js
   ${web_dir}/src/frame_view.js

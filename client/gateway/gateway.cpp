@@ -5,6 +5,8 @@
 
 #include "client/gateway/bus_json.hpp"
 #include "client/gateway/command_requests.hpp"
+#include "common/design_image.hpp"
+#include "messages/design_pieces.hpp"
 #include "client/gateway/compressed_image.hpp"
 #include "client/gateway/foxglove_wire.hpp"
 #include "client/gateway/mcap_export.hpp"
@@ -197,6 +199,7 @@ int Gateway::Attach(GatewayClient* client) {
 }
 
 void Gateway::Detach(int client) {
+  uploads_.Drop(client);
   clients_.erase(client);
   counters_at_window_.erase(client);
 }
@@ -267,6 +270,8 @@ void Gateway::ServiceRequest(int client, uint32_t service, const json& request,
       if (problem.empty()) Relay(client, channels_.time, command, reply);
       break;
     }
+    case kDesignService:
+      return DesignRequest(client, request, reply, fail);
     case kRefreshService:
       Client(client)->ResetTiles();
       Relay(client, channels_.refresh, refresh_request_t{}, reply);
@@ -275,6 +280,41 @@ void Gateway::ServiceRequest(int client, uint32_t service, const json& request,
       problem = "service " + std::to_string(service) + " is not one of this gateway's";
   }
   if (!problem.empty()) fail(problem);
+}
+
+// {"name"} => PARAM design=NAME; a part of an image => held, or whole => its DESIGN pieces in turn
+void Gateway::DesignRequest(int client, const json& request,
+                            std::function<void(ClientProtocol&, const json&)> reply,
+                            std::function<void(const std::string&)> fail) {
+  DesignUploads::Step step = uploads_.Take(client, request);
+  if (!step.problem.empty()) return fail(step.problem);
+  if (!step.built_in.empty()) {
+    param_command_t command{};
+    command.names = {"design"};
+    command.values = {step.built_in};
+    command.num_assignments = 1;
+    return Relay(client, channels_.param, command, reply);
+  }
+  if (!step.whole) {
+    CommandOutcome held;
+    held.result = CommandOutcome::kAccepted;
+    held.reason = "held " + std::to_string(step.held) + " of " + std::to_string(step.size) + " bytes";
+    return reply(*Client(client), CommandResultJson(held, "DESIGN", 0));
+  }
+  const std::string digest = Sha256Hex(step.bytes.data(), step.bytes.size());
+  RelayPieces(client, std::make_shared<const std::vector<design_piece_t>>(
+                          SplitDesignFile(step.name, digest, step.bytes, relay_.client_id(), 0)),
+              0, std::move(reply));
+}
+
+// One piece after another, each on its ACK; the answer to the last (or to one refused) is the reply.
+void Gateway::RelayPieces(int client, std::shared_ptr<const std::vector<design_piece_t>> pieces, size_t index,
+                          std::function<void(ClientProtocol&, const json&)> reply) {
+  Relay(client, channels_.design, (*pieces)[index],
+        [this, client, pieces, index, reply](ClientProtocol& protocol, const json& result) {
+          if (!result.value("accepted", false) || index + 1 == pieces->size()) return reply(protocol, result);
+          RelayPieces(client, pieces, index + 1, reply);
+        });
 }
 
 void Gateway::CallService(int client, uint32_t service, uint32_t call, std::string_view encoding,

@@ -21,9 +21,11 @@
 #include "client/gateway/channel_feed.hpp"
 #include "client/gateway/client_protocol.hpp"
 #include "client/gateway/command_relay.hpp"
+#include "client/gateway/design_uploads.hpp"
 #include "client/gateway/frame_mirror.hpp"
 #include "client/gateway/gateway_catalog.hpp"
 #include "client/gateway/session_recorder.hpp"
+#include "flagsim/design_piece_t.hpp"
 #include "flagsim/params_t.hpp"
 #include "messages/bus.hpp"
 #include "messages/channels.hpp"
@@ -124,6 +126,13 @@ class Gateway {
   void ServiceRequest(int client, uint32_t service, const nlohmann::json& request,
                       std::function<void(ClientProtocol&, const nlohmann::json&)> reply,
                       std::function<void(const std::string&)> fail);
+  /// /flag/design (design_uploads.hpp): a built-in design, or a part of a person's image, whose
+  /// last part sends the whole in DESIGN pieces.
+  void DesignRequest(int client, const nlohmann::json& request,
+                     std::function<void(ClientProtocol&, const nlohmann::json&)> reply,
+                     std::function<void(const std::string&)> fail);
+  void RelayPieces(int client, std::shared_ptr<const std::vector<design_piece_t>> pieces, size_t index,
+                   std::function<void(ClientProtocol&, const nlohmann::json&)> reply);
 
   Bus& bus_;
   const Channels& channels_;
@@ -135,6 +144,7 @@ class Gateway {
   std::array<int, kChannelCount + 1> subscribers_{};  ///< clients subscribed, by channel id
   std::map<int, GatewayClient*> clients_;
   std::map<int, int> commands_in_flight_;  ///< by client
+  DesignUploads uploads_;                  ///< images coming from clients, in parts
   int next_client_ = 1;
   std::optional<params_t> params_;  ///< the newest table
   nlohmann::json last_camera_;      ///< the newest camera published, without its frame id

@@ -45,6 +45,7 @@ const std::vector<ServiceInfo>& AdvertisedServices() {
       {kRefreshService, "/flag/refresh", "flagsim.Refresh", "refresh_request", "command_result"},
       {kRecordService, "/flag/record", "flagsim.Record", "record_request", "record_result"},
       {kTimeService, "/flag/time", "flagsim.Time", "time_request", "command_result"},
+      {kDesignService, "/flag/design", "flagsim.Design", "design_request", "command_result"},
   };
   return services;
 }

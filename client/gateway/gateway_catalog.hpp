@@ -33,6 +33,7 @@ enum ServiceId : uint32_t {
   kRefreshService,
   kRecordService,
   kTimeService,
+  kDesignService,
 };
 
 struct ChannelInfo {

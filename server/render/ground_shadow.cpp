@@ -38,10 +38,23 @@ void GroundShadow::Cast(const RenderScene& scene) {
   texels_.assign(size_t(kTexels) * kTexels, 0.0f);
   for (const Mesh& mesh : scene.meshes) {
     if (!mesh.casts_shadow) continue;
+    const bool cut = scene.materials[size_t(mesh.front_material)].patterned && !scene.pattern.alpha.empty() &&
+                     mesh.uvs.size() == mesh.positions.size();
     for (const auto& triangle : mesh.triangles) {
-      Draw((on_ground(mesh.positions[triangle[0]]) - origin_) / texel_size_,
-           (on_ground(mesh.positions[triangle[1]]) - origin_) / texel_size_,
-           (on_ground(mesh.positions[triangle[2]]) - origin_) / texel_size_);
+      const Eigen::Vector2f a = (on_ground(mesh.positions[triangle[0]]) - origin_) / texel_size_;
+      const Eigen::Vector2f b = (on_ground(mesh.positions[triangle[1]]) - origin_) / texel_size_;
+      const Eigen::Vector2f c = (on_ground(mesh.positions[triangle[2]]) - origin_) / texel_size_;
+      if (!cut) {
+        Draw(a, b, c, [](const Eigen::Vector3f&) { return 1.0f; });
+        continue;
+      }
+      const Eigen::Vector2f& ua = mesh.uvs[triangle[0]];
+      const Eigen::Vector2f& ub = mesh.uvs[triangle[1]];
+      const Eigen::Vector2f& uc = mesh.uvs[triangle[2]];
+      Draw(a, b, c, [&](const Eigen::Vector3f& weight) {
+        const Eigen::Vector2f uv = weight[0] * ua + weight[1] * ub + weight[2] * uc;
+        return scene.pattern.Opacity(uv.x(), uv.y());
+      });
     }
   }
   Blur();
@@ -50,8 +63,14 @@ void GroundShadow::Cast(const RenderScene& scene) {
 // One projected triangle (in texels) covers the texels whose centres are inside it, on either
 // winding (the sun sees the cloth from both sides): row by row, the span between where the
 // row's centre line crosses its edges.
-void GroundShadow::Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c) {
+template <class Opacity>
+void GroundShadow::Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c,
+                        const Opacity& opacity) {
   const Eigen::Vector2f* corners[3] = {&a, &b, &c};
+  // Barycentric weights of point p: the areas opposite each corner over the whole (signed).
+  const auto cross = [](const Eigen::Vector2f& u, const Eigen::Vector2f& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const float area = cross(b - a, c - a);
+  if (area == 0) return;
   const float low = std::min({a.y(), b.y(), c.y()}), high = std::max({a.y(), b.y(), c.y()});
   const int first_row = std::max(0, int(std::ceil(low - 0.5f))),
             last_row = std::min(kTexels - 1, int(std::floor(high - 0.5f)));
@@ -69,7 +88,11 @@ void GroundShadow::Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, cons
     const int first = std::max(0, int(std::ceil(left - 0.5f))),
               last = std::min(kTexels - 1, int(std::floor(right - 0.5f)));
     float* row = &texels_[size_t(y) * kTexels];
-    for (int x = first; x <= last; ++x) row[x] = 1.0f;
+    for (int x = first; x <= last; ++x) {
+      const Eigen::Vector2f p(float(x) + 0.5f, centre);
+      const Eigen::Vector3f weight(cross(b - p, c - p) / area, cross(c - p, a - p) / area, cross(a - p, b - p) / area);
+      row[x] = std::max(row[x], opacity(weight));
+    }
   }
 }
 

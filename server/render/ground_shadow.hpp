@@ -29,7 +29,8 @@ class GroundShadow {
   static constexpr int kTexels = 256;  ///< across the map
 
   /// The map of the meshes that cast, in the scene's light `scene.shadow_light`; no shadow when
-  /// there is none, it is below the horizon, or nothing casts.
+  /// there is none, it is below the horizon, or nothing casts. A patterned mesh whose pattern has
+  /// transparent texels casts the shadow of what is left of it.
   void Cast(const RenderScene& scene);
 
   /// 0 (in the sun) .. 1 (in full shadow) at ground point (x, z), m; 0 outside the map (its
@@ -46,7 +47,10 @@ class GroundShadow {
   bool empty() const { return texels_.empty(); }
 
  private:
-  void Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c);
+  /// One projected triangle's texels, each as dark as `opacity` (a function of the texel
+  /// centre's barycentric weights, 0 .. 1) says: the pattern's alpha for a cut surface.
+  template <class Opacity>
+  void Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c, const Opacity& opacity);
   void Blur();
 
   Eigen::Vector2f origin_ = Eigen::Vector2f::Zero();     ///< m, the map's (x, z) corner

@@ -17,11 +17,16 @@ struct Texture {
   std::vector<uint8_t> alpha;  ///< a byte per texel, the same order, straight (not premultiplied); empty: opaque
 
   /// The texel under (u, v), clamped to the edges.
-  const uint8_t* Sample(float u, float v) const {
+  const uint8_t* Sample(float u, float v) const { return &rgb[Texel(u, v) * 3]; }
+  /// Its opacity, 0 .. 1 (1 without alpha).
+  float Opacity(float u, float v) const { return alpha.empty() ? 1.0f : float(alpha[Texel(u, v)]) / 255.0f; }
+
+ private:
+  size_t Texel(float u, float v) const {
     int x = static_cast<int>(u * width), y = static_cast<int>(v * height);
     x = x < 0 ? 0 : x >= width ? width - 1 : x;
     y = y < 0 ? 0 : y >= height ? height - 1 : y;
-    return &rgb[(size_t(y) * width + x) * 3];
+    return size_t(y) * width + x;
   }
 };
 

@@ -115,5 +115,24 @@ TEST(GroundShadow, TheGroundInShadowHasNoSunlight) {
   }
 }
 
+TEST(GroundShadow, ACutSurfaceCastsTheShadowOfWhatIsLeft) {
+  // The square's pattern is transparent on its -z half (v < 1/2, with v = z + 1/2): the sun
+  // straight above shades only the +z half under it.
+  RenderScene scene = SquareOverGround(2.0f, Eigen::Vector3f(0, 1, 0));
+  Mesh& square = scene.meshes[0];
+  for (size_t i = 0; i < square.positions.size(); ++i)
+    square.uvs[i] = Eigen::Vector2f(square.positions[i].x() + 0.5f, square.positions[i].z() + 0.5f);
+  scene.materials[1].patterned = true;
+  scene.pattern.width = 1;
+  scene.pattern.height = 2;
+  scene.pattern.rgb.assign(6, 255);
+  scene.pattern.alpha = {0, 255};
+  GroundShadow shadow;
+  shadow.Cast(scene);
+  ASSERT_FALSE(shadow.empty());
+  EXPECT_NEAR(shadow.At(0.0f, 0.3f), 1.0f, 1e-6f);   // under the opaque half
+  EXPECT_NEAR(shadow.At(0.0f, -0.3f), 0.0f, 1e-6f);  // under the clear half: in the sun
+}
+
 }  // namespace
 }  // namespace flagsim::render

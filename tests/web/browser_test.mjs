@@ -1,7 +1,8 @@
 // The live view in a real browser (Debian's Chromium, headless, driven by playwright-core):
 // the picture is the server's frame byte for byte, dragging orbits the camera, the parameter
 // panel sets a value and shows a rejection's reason, the keyboard resets the view, a timeline
-// key is added and played, the clock pauses and steps, a recording downloads as MCAP and MP4,
+// key is added and played, the clock pauses and steps, a design is chosen, uploaded and dropped,
+// a recording downloads as MCAP and MP4,
 // the page fits a phone and a pinch zooms, a linked view is offered, and the page follows flagd
 // stopped and started again. Leaves screenshots of the page in OUT_DIR.
 //   node browser_test.mjs PAGE_URL FLAGCTL PREFIX OUT_DIR FLAGD PID_FILE
@@ -15,7 +16,7 @@ import { promisify } from "node:util";
 import { chromium } from "playwright-core";
 
 import { check, run, section, waitFor } from "./checks.mjs";
-import { readPngRGB } from "./png.mjs";
+import { encodePngRGBA, readPngRGB } from "./png.mjs";
 
 const [pageUrl, flagctl, prefix, outDir, flagd, pidFile] = process.argv.slice(2);
 const execute = promisify(execFile);
@@ -335,6 +336,63 @@ async function checkClock(page) {
   await waitFor(() => hooks(page, () => window.flagsim.status?.time_scale === 1), 10, "time_scale 1");
 }
 
+/** A swallowtail pennant, 300 x 150: a blue hoist, red and white stripes, a notch cut from the fly. */
+function pennantPng() {
+  return encodePngRGBA(300, 150, (x, y) => {
+    const notch = x > 300 - 1.1 * (75 - Math.abs(y - 75)) && x > 200;
+    const colour = x < 90 ? [20, 50, 150] : Math.floor(y / 30) % 2 ? [240, 240, 235] : [200, 25, 35];
+    return [...colour, notch ? 0 : 255];
+  });
+}
+
+async function checkDesign(page) {
+  section("the flag's design: a built-in one, your own image, a bad file dropped");
+  const panel = page.locator("#design-body");
+  await panel.locator("select").selectOption("checker");
+  await waitFor(() => hooks(page, () => window.flagsim.params?.find((p) => p.name === "design")?.value === "checker"),
+                10, "design=checker in PARAMS");
+  check("the list sets a built-in design", true);
+  const pennant = `${outDir}/pennant.png`;
+  writeFileSync(pennant, pennantPng());
+  await panel.locator("input[type=file]").setInputFiles(pennant);
+  const shown = await waitFor(async () => {
+    const text = await panel.locator(".design-progress").textContent();
+    return text.startsWith("design pennant.png") && text;
+  }, 20, "the server's answer to the upload");
+  check("an image chosen with the button is sent and shown, the flag at its aspect", shown.includes("the flag 2 m wide"), shown);
+  const params = await waitFor(() => hooks(page, () => {
+    const design = window.flagsim.params?.find((p) => p.name === "design")?.value;
+    const width = window.flagsim.params?.find((p) => p.name === "width")?.value;
+    return design === "image" && width === 2 && { design, width };
+  }), 10, "design=image, width 2 in PARAMS");
+  check("  PARAMS say design image and width 2 m", Boolean(params), params);
+  check("  the list says \"your image\"", (await panel.locator("select").inputValue()) === "image");
+  const frame = await hooks(page, () => window.flagsim.frame.id);
+  await hooks(page, (id) => window.flagsim.waitForFrame((f) => f.id >= id + 15 && f.hashOk, 10000), frame);
+  await page.locator("#stage").screenshot({ path: `${outDir}/design-pennant.png` });
+  check(`  a screenshot of the pennant: ${outDir}/design-pennant.png`, true);
+  const dropped = await page.evaluateHandle(() => {
+    const transfer = new DataTransfer();
+    const truncated = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 0x49, 0x48];  // a signature, half a header
+    transfer.items.add(new File([new Uint8Array(truncated)], "broken.png", { type: "image/png" }));
+    return transfer;
+  });
+  await page.locator("#stage").dispatchEvent("drop", { dataTransfer: dropped });
+  const refused = await waitFor(() => hooks(page, () => {
+    const toast = [...document.querySelectorAll("#toasts *")].map((t) => t.textContent).find((t) => t.includes("broken.png"));
+    return toast;
+  }), 10, "a toast naming the dropped file's fault");
+  check("a bad file dropped on the picture is refused with its reason, and nothing changes",
+        refused.includes("the PNG's header cannot be read") &&
+          (await hooks(page, () => window.flagsim.params?.find((p) => p.name === "design")?.value)) === "image", refused);
+  await panel.locator("select").selectOption("nordic_cross");
+  const back = await waitFor(() => hooks(page, () => {
+    const width = window.flagsim.params?.find((p) => p.name === "width")?.value;
+    return window.flagsim.params?.find((p) => p.name === "design")?.value === "nordic_cross" && width === 1.5 && width;
+  }), 10, "design=nordic_cross, width 1.5 in PARAMS");
+  check("back to a built-in design, the flag goes back to 3 : 2", Boolean(back), back);
+}
+
 async function checkRecordingDownloads(page) {
   section("a recording, downloaded as MCAP and MP4");
   const tools = page.locator("#session-tools");
@@ -484,6 +542,7 @@ await run(async () => {
     await checkZoomAndFrame(page);
     await checkTimeline(page);
     await checkClock(page);
+    await checkDesign(page);
     await checkRecordingDownloads(page);
     await checkPhone(browser);
     await checkTokenForm(browser);

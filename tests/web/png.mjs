@@ -1,7 +1,8 @@
 // Reads the PNG files flagctl snapshot writes (8-bit RGB, not interlaced) into RGB8 pixels,
 // with Node's zlib: so a test can compare a snapshot with what the page shows, byte for byte.
+// Writes RGBA PNGs too: a design image for the page to upload.
 import { readFileSync } from "node:fs";
-import { inflateSync } from "node:zlib";
+import { deflateSync, inflateSync } from "node:zlib";
 
 /** The previous pixel's byte (a), the byte above (b) and above-left (c) => the Paeth predictor. */
 function paeth(a, b, c) {
@@ -43,4 +44,39 @@ export function readPngRGB(path) {
     }
   }
   return { width, height, rgb };
+}
+
+const kCrcTable = Array.from({ length: 256 }, (_, n) => {
+  let c = n;
+  for (let k = 0; k < 8; ++k) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+  return c >>> 0;
+});
+
+/** CRC-32 of a PNG chunk's type and data. */
+function crc32(bytes) {
+  let crc = 0xffffffff;
+  for (const byte of bytes) crc = kCrcTable[(crc ^ byte) & 0xff] ^ (crc >>> 8);
+  return (crc ^ 0xffffffff) >>> 0;
+}
+
+/** An 8-bit RGBA PNG of width x height pixels, rgba(x, y) giving each as [r, g, b, a]. */
+export function encodePngRGBA(width, height, rgba) {
+  const rows = Buffer.alloc((width * 4 + 1) * height);
+  for (let y = 0; y < height; ++y) {
+    for (let x = 0; x < width; ++x) Buffer.from(rgba(x, y)).copy(rows, y * (width * 4 + 1) + 1 + x * 4);
+  }
+  const chunk = (type, data) => {
+    const head = Buffer.alloc(8);
+    head.writeUInt32BE(data.length, 0);
+    head.write(type, 4, "latin1");
+    const crc = Buffer.alloc(4);
+    crc.writeUInt32BE(crc32(Buffer.concat([head.subarray(4), data])), 0);
+    return Buffer.concat([head, data, crc]);
+  };
+  const header = Buffer.alloc(13);
+  header.writeUInt32BE(width, 0);
+  header.writeUInt32BE(height, 4);
+  header.set([8, 6, 0, 0, 0], 8);  // 8 bits, RGBA, deflate, no filter, not interlaced
+  return Buffer.concat([Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]), chunk("IHDR", header),
+                        chunk("IDAT", deflateSync(rows)), chunk("IEND", Buffer.alloc(0))]);
 }

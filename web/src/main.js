@@ -21,6 +21,7 @@ import { ParamPanel } from "./param_panel.js";
 import { readParamsTable, readValue } from "./params_table.js";
 import { PictureStream } from "./picture_stream.js";
 import { Plots } from "./plots.js";
+import { DesignPanel } from "./design_panel.js";
 import { SessionTools } from "./session_tools.js";
 import { ServerWatch } from "./server_watch.js";
 import { readViewLink } from "./view_link.js";
@@ -90,6 +91,7 @@ function createParts(page) {
     cameraControls,
     cameraPanel: new CameraPanel({ container: byId("camera-body"), cameraControls, getCamera: () => page.camera }),
     paramPanel: new ParamPanel({ container: byId("param-body"), connection, toast }),
+    designPanel: new DesignPanel({ container: byId("design-body"), connection, toast, stage: byId("stage") }),
     windPanel,
     timelinePanel: new TimelinePanel({
       container: byId("timeline-body"), connection, toast,
@@ -222,6 +224,7 @@ function onParamsTable(page, parts, params) {
   const known = page.params.map((p) => p.name).join(",");
   page.params = params;
   parts.paramPanel.update(params);
+  parts.designPanel.update(params);
   if (names !== known) page.connection.subscribeParameters(params.map((p) => p.name));
 }
 

@@ -11,8 +11,10 @@
 #include "flagsim/checkpoint_t.hpp"
 #include "messages/event_log_reader.hpp"
 #include "server/service/server.hpp"
+#include "tests/client/gateway/base64.hpp"
 #include "tests/client/gateway/fake_client.hpp"
 #include "tests/client/gateway/tile_update_reader.hpp"
+#include "tests/common/test_images.hpp"
 #include "tests/service/simulated_clock.hpp"
 
 namespace flagsim::gateway {
@@ -67,7 +69,7 @@ TEST_F(GatewayTest, ANewClientHearsWhoWeAreWhatWeSendAndWhatWeServe) {
   EXPECT_EQ(client_.texts[1]["channels"].size(), kChannelCount);
   EXPECT_EQ(client_.texts[1]["channels"][kImageChannel - 1]["schemaName"], "foxglove.CompressedImage");
   EXPECT_EQ(client_.texts[2]["op"], "advertiseServices");
-  EXPECT_EQ(client_.texts[2]["services"].size(), 7u);
+  EXPECT_EQ(client_.texts[2]["services"].size(), 8u);
   for (const json& channel : client_.texts[1]["channels"]) {
     if (channel["encoding"] == "json") {
       EXPECT_FALSE(json::parse(channel["schema"].get<std::string>(), nullptr, false).is_discarded())
@@ -436,6 +438,35 @@ TEST_F(GatewayTest, ARecordingIsALogOfTheBusToDownload) {
   EXPECT_EQ(refreshes, 1) << "a recording starts with a whole frame and a checkpoint";
   EXPECT_FALSE(gateway_.RecordingFile("../" + name));
   EXPECT_FALSE(gateway_.RecordingFile("/etc/passwd"));
+}
+
+TEST_F(GatewayTest, AnImageUploadedInPartsBecomesTheDesign) {
+  std::vector<uint8_t> rgba = flagsim::testing::SolidRgba(120, 40, 30, 90, 160);
+  for (size_t i = 3; i < rgba.size(); i += 8) rgba[i] = 0;  // every other pixel transparent
+  const std::vector<uint8_t> png = flagsim::testing::PngBytes(120, 40, rgba);
+  const size_t half = png.size() / 2;
+  const auto part = [&](size_t offset, size_t length) {
+    return json{{"name", "striped.png"}, {"size", png.size()}, {"offset", offset},
+                {"data", testing::Base64({png.begin() + long(offset), png.begin() + long(offset + length)})}}
+        .dump();
+  };
+  client_.Call(kDesignService, 1, part(0, half));
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(1) > 0; }));
+  EXPECT_EQ(client_.responses[1]["reason"], "held " + std::to_string(half) + " of " + std::to_string(png.size()) + " bytes");
+  client_.Call(kDesignService, 2, part(half, png.size() - half));
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(2) > 0; }));
+  EXPECT_TRUE(client_.responses[2]["accepted"]) << client_.responses[2];
+  EXPECT_EQ(client_.responses[2]["channel"], "DESIGN");
+  const Scene& scene = server_.session().scene();
+  EXPECT_EQ(scene.service.design, render::FlagDesign::kImage);
+  ASSERT_TRUE(scene.service.design_file);
+  EXPECT_EQ(scene.service.design_file->bytes, png);
+  EXPECT_DOUBLE_EQ(scene.sim.width, 3 * scene.sim.height);
+
+  client_.Call(kDesignService, 3, R"({"name": "tricolour"})");
+  ASSERT_TRUE(RunUntil([&] { return client_.responses.count(3) > 0; }));
+  EXPECT_EQ(client_.responses[3]["channel"], "PARAM");
+  EXPECT_EQ(server_.session().scene().service.design, render::FlagDesign::kTricolour);
 }
 
 }  // namespace
