@@ -179,7 +179,10 @@ int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
   Gateway gateway(bus, channels, gateway_options);
   ServerContext context{gateway,
                         {options.token, endpoint.address().is_loopback(), options.allow_origins},
-                        std::to_string(UnixMicros())};
+                        std::to_string(UnixMicros()),
+                        0,
+                        nullptr,
+                        ""};
   if (context.access.token.empty() && !context.access.loopback) context.access.token = NewToken();
   if (tls) context.tls = tls->context.get();
 

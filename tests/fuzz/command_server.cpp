@@ -53,7 +53,6 @@ void Require(bool ok, const std::string& what, const std::string& detail) {
 
 CommandServer::CommandServer(Bus& bus, const Channels& channels, std::vector<CommandKey> keys)
     : bus_(bus),
-      channels_(channels),
       session_(SmallScene()),
       presence_(bus, channels),
       journal_(&bus, channels),

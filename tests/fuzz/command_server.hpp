@@ -61,7 +61,6 @@ class CommandServer {
   void Replay(const uint8_t* data, size_t size);
 
   Bus& bus_;
-  const Channels& channels_;
   Session session_;
   ServerStats stats_;
   ServerPresence presence_;

@@ -54,7 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   (void)quiet;
   static Served served;
   if (size == 0) return 0;
-  gateway::ServerContext context{served.gateway, {}, "fuzz", 0};
+  gateway::ServerContext context{served.gateway, {}, "fuzz", 0, nullptr, ""};
   if (data[0] & 1) context.access.token = "0123456789abcdef0123456789abcdef";
   context.access.loopback = !(data[0] & 2);
   if (data[0] & 4) context.access.allow_origins = {"https://app.foxglove.dev"};

@@ -103,7 +103,7 @@ TEST(GroundShadow, TheGroundInShadowHasNoSunlight) {
       renderer.Render(scene, camera, options, &image);
       const Eigen::Matrix4d clip_from_world = camera.Projection() * camera.View();
       const auto pixel_of = [&](double x, double z) {
-        Eigen::Vector2d pixel;
+        Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
         EXPECT_TRUE(ToPixel(clip_from_world, camera, x, 0, z, &pixel));
         return image.Pixel(int(pixel.x()), int(pixel.y()));
       };

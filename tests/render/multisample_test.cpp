@@ -154,7 +154,9 @@ TEST(Multisample, AnEdgesCoverageIsCloseToTheAreaItLeavesInside) {
     // One sample is off by up to 1/2 of a pixel's light, n samples by about 1/(2n) on average.
     EXPECT_LT(mean, 0.6 / pattern.count) << AntialiasingNames()[int(mode)];
     EXPECT_LT(error_max, 1.5 / pattern.count + 0.01) << AntialiasingNames()[int(mode)];
-    if (mode != Antialiasing::kOff) EXPECT_LT(mean, 0.15) << "smoother than one sample";
+    if (mode != Antialiasing::kOff) {
+      EXPECT_LT(mean, 0.15) << "smoother than one sample";
+    }
   }
 }
 
