@@ -8,6 +8,8 @@
 #   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL (the llvmpipe comparison), Bullet (the soft body
 #                                    comparison) and gnuplot (charts)
 #   scripts/install-deps.sh --fuzz   also clang 14 and libFuzzer, for the fuzz targets (scripts/fuzz.sh)
+#   scripts/install-deps.sh --slurm  also Slurm's daemons, client and munge: integration.slurm starts a
+#                                    one-node cluster of its own (nothing starts by itself)
 set -euo pipefail
 
 packages=(
@@ -33,7 +35,8 @@ for option in "$@"; do
     --sanitize) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;  # llvm-14: llvm-symbolizer, for reports
     --bench) packages+=(libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox libbullet-dev) ;;
     --fuzz) packages+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev llvm-14) ;;
-    *) echo "install-deps: unknown option $option (known: --browser, --java, --sanitize, --bench, --fuzz)" >&2; exit 2 ;;
+    --slurm) packages+=(slurmctld slurmd slurm-client munge) ;;
+    *) echo "install-deps: unknown option $option (known: --browser, --java, --sanitize, --bench, --fuzz, --slurm)" >&2; exit 2 ;;
   esac
 done
 # Node.js and npm build the live view's page (and run its tests): the machine's own if it has

@@ -23,7 +23,7 @@ if [[ ${1:-} == --sanitize ]]; then
 fi
 case $sanitize in
   "")
-    scripts/install-deps.sh --browser
+    scripts/install-deps.sh --browser --slurm
     scripts/build.sh
     exec ctest --test-dir build --output-on-failure --timeout 300 "$@" ;;
   address) build=build-asan sanitizers=address,undefined ;;

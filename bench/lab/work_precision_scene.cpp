@@ -16,12 +16,13 @@ constexpr double kReferenceTarget = 1e-8;  ///< m: the reference converges to a 
 
 }  // namespace
 
-WorkPrecisionScene LoadWorkPrecisionScene() {
+WorkPrecisionScene LoadWorkPrecisionScene(int reference_substeps) {
   WorkPrecisionScene scene;
   scene.trial = PresetTrial(kPreset, kHorizon);
   scene.camera = LoadScene(kPreset).camera;
   References references(scene.trial);
-  scene.reference_substeps = references.Converge(kReferenceTarget).substeps;
+  scene.reference_substeps =
+      reference_substeps > 0 ? reference_substeps : references.Converge(kReferenceTarget).substeps;
   scene.reference = references.At(scene.reference_substeps);
   return scene;
 }

@@ -20,8 +20,9 @@ struct WorkPrecisionScene {
   sim::ClothState<double> reference;  ///< the state at the horizon
 };
 
-/// The scene with its reference converged to 1e-11 m RMS (printed as a "# reference" line).
-WorkPrecisionScene LoadWorkPrecisionScene();
+/// The scene with its reference converged to 1e-11 m RMS (printed as a "# reference" line); or,
+/// given `reference_substeps` (what a converged scene found), that reference run once.
+WorkPrecisionScene LoadWorkPrecisionScene(int reference_substeps = 0);
 
 /// The CSV's columns: integrator,iterations,h_s,error_m,error_px,largest_px,cost_s_per_s.
 std::vector<std::string> WorkPrecisionColumns();
