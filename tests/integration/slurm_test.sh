@@ -6,84 +6,23 @@
 # Usage: slurm_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
 source_dir=$1 build=$2
-for command in munged slurmctld slurmd sbatch squeue sinfo; do
+for command in munged slurmctld slurmd sbatch squeue sinfo scontrol; do
   if ! command -v "$command" >/dev/null; then
     echo "skipped: no $command: Slurm is not installed here (scripts/install-deps.sh --slurm installs it)"
     exit 77
   fi
 done
 work=$(mktemp -d)
-chmod 0755 "$work"
-pids=()
-stop() {
-  # the jobs' processes first (scontrol knows them), then the daemons, TERM and then KILL
-  for pid in $(scontrol listpids 2>/dev/null | awk 'NR > 1 {print $1}'); do kill "$pid" 2>/dev/null || true; done
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  sleep 0.5
-  for pid in "${pids[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
-  rm -rf "$work"
-}
-trap stop EXIT
+cluster=$source_dir/scripts/slurm-cluster
+trap '"$cluster" stop "$work/cluster"; rm -rf "$work"' EXIT
 source "$(dirname "$0")/checks.sh"
 
-# slurmctld looks its address up and needs a loopback address besides 127.0.0.1; it runs as the
-# controller only on the host SlurmctldHost names (this one), which the node need not be.
-ip addr add 127.0.0.2/8 dev lo
-
-# munge: a key of our own, its socket's folder open to all, nothing on its path writable by others.
-mkdir -m 0711 "$work/munge"
-mkdir -m 0711 "$work/munge/run"
-dd if=/dev/urandom of="$work/munge/munge.key" bs=1024 count=1 status=none
-chmod 0600 "$work/munge/munge.key"
-munged -F --force --socket="$work/munge/run/munge.socket" --key-file="$work/munge/munge.key" \
-  --pid-file="$work/munge/munged.pid" --log-file="$work/munge/munged.log" --seed-file="$work/munge/seed" &
-pids+=($!)
-
-node=flagsim-node
-mkdir -p "$work/state" "$work/spool"
-cat >"$work/slurm.conf" <<EOF
-ClusterName=flagsim
-SlurmctldHost=$(hostname -s)(127.0.0.1)
-MailProg=/bin/true
-SlurmUser=root
-SlurmctldPort=6817
-SlurmdPort=6818
-AuthType=auth/munge
-AuthInfo=socket=$work/munge/run/munge.socket
-ProctrackType=proctrack/linuxproc
-TaskPlugin=task/none
-MpiDefault=none
-AccountingStorageType=accounting_storage/none
-JobCompType=jobcomp/none
-StateSaveLocation=$work/state
-SlurmdSpoolDir=$work/spool
-SlurmctldPidFile=$work/slurmctld.pid
-SlurmdPidFile=$work/slurmd.pid
-SlurmctldLogFile=$work/slurmctld.log
-SlurmdLogFile=$work/slurmd.log
-SchedulerParameters=batch_sched_delay=0,sched_min_interval=0
-MessageTimeout=5
-ReturnToService=2
-NodeName=$node NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
-PartitionName=flagsim Nodes=$node Default=YES MaxTime=INFINITE State=UP
-EOF
-export SLURM_CONF=$work/slurm.conf
-for _ in $(seq 50); do [[ -S $work/munge/run/munge.socket ]] && break; sleep 0.1; done
-slurmctld -D -f "$SLURM_CONF" >/dev/null 2>&1 &
-pids+=($!)
-slurmd -D -N "$node" -f "$SLURM_CONF" >/dev/null 2>&1 &
-pids+=($!)
-idle="" started=$SECONDS
-while ((SECONDS - started < 20)); do
-  idle=$(timeout 5 sinfo -h -o %t 2>/dev/null || true)
-  [[ $idle == idle ]] && break
-  sleep 0.2
-done
-if [[ $idle == idle ]]; then pass "a one-node Slurm cluster is up, its node idle"
+if "$cluster" start "$work/cluster" >"$work/out" 2>&1; then pass "a one-node Slurm cluster is up, its node idle"
 else
-  fail "no idle node after 20 s (sinfo: '$idle')" "$work/slurmctld.log"
+  fail "scripts/slurm-cluster start" "$work/out"
   finish
 fi
+export SLURM_CONF=$work/cluster/slurm.conf
 
 sweep=$source_dir/scripts/sweep
 lab=$build/bench/lab
