@@ -27,6 +27,7 @@ packages=(
   ffmpeg                                         # flagctl export's MP4 and GIF encoder; ffprobe for its test
   libgtest-dev libbenchmark-dev                  # tests and benchmarks
   iproute2 nftables util-linux                   # private network namespaces for the udpm tests
+  faketime                                       # integration.hosts: a host whose clock runs ahead
 )
 for option in "$@"; do
   case $option in

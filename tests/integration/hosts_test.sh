@@ -1,0 +1,124 @@
+#!/usr/bin/env bash
+# Several hosts on one bus: five network namespaces joined by a bridge (veth pairs; LCM's
+# multicast with ttl=1 crossing it), inside the private namespace ctest gives this test
+# (scripts/netns-run). Host 1 runs flagd with prefix ALPHA_, host 2 flagd with BETA_ (both taking
+# only signed commands; frames at 10 a second, since both share this machine's cores), host 3
+# records each, host 5 steers both through 5 % loss on its link.
+#   - each server holds real time, beside the other
+#   - a command reaches its own server only, and is applied once though resent
+#   - the recordings hold both sessions whole: each replays bit for bit
+#   - signed commands are taken across hosts whose clocks differ within the freshness window
+#     (30 s; host 5's clock set 20 s ahead), and refused as stale beyond it (45 s ahead)
+# Usage: hosts_test.sh BUILD_DIR
+set -euo pipefail
+build=$1
+for command in faketime nsenter nft; do
+  command -v "$command" >/dev/null || { echo "skipped: no $command (scripts/install-deps.sh installs it)"; exit 77; }
+done
+flagd=$build/server/flagd flagctl=$build/client/flagctl
+export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=1"
+work=$(mktemp -d)
+holders=() daemons=()
+stop() {
+  for pid in "${daemons[@]}"; do kill "$pid" 2>/dev/null || true; done
+  sleep 0.5
+  for pid in "${daemons[@]}" "${holders[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
+  rm -rf "$work"
+}
+trap stop EXIT
+source "$(dirname "$0")/checks.sh"
+
+# The switch: a bridge that floods multicast to every port (no snooping).
+ip link add switch type bridge mcast_snooping 0
+ip link set switch up
+
+# on HOST COMMAND...: runs COMMAND in host HOST's network namespace.
+on() {
+  local host=$1
+  shift
+  nsenter -t "${holders[$host]}" -n "$@"
+}
+
+# add_host N: a namespace held by a sleeping process, its end of a veth pair on the switch,
+# 10.77.0.N/24, and multicast routed out of it.
+add_host() {
+  local host=$1
+  unshare --net sleep 100000 &
+  holders[$host]=$!
+  while [[ $(readlink "/proc/${holders[$host]}/ns/net") == $(readlink /proc/self/ns/net) ]]; do sleep 0.01; done
+  ip link add "h$host" type veth peer name "port$host"
+  ip link set "h$host" netns "${holders[$host]}"
+  ip link set "port$host" master switch up
+  on "$host" ip link set lo up
+  on "$host" ip addr add "10.77.0.$host/24" dev "h$host"
+  on "$host" ip link set "h$host" up multicast on
+  on "$host" ip route add 224.0.0.0/4 dev "h$host"
+}
+for host in 1 2 3 4 5; do add_host "$host"; done
+# Host 5's link loses 5 % of the datagrams each way.
+on 5 nft add table ip link_loss
+on 5 nft add chain ip link_loss input "{ type filter hook input priority 0; }"
+on 5 nft add chain ip link_loss output "{ type filter hook output priority 0; }"
+on 5 nft add rule ip link_loss input meta l4proto udp numgen random mod 100 lt 5 drop
+on 5 nft add rule ip link_loss output meta l4proto udp numgen random mod 100 lt 5 drop
+pass "five hosts on one bridge, host 5's link losing 5 % each way"
+
+"$flagctl" keygen -o "$work/ops.key" >/dev/null
+on 1 "$flagd" --prefix ALPHA_ --key-file "$work/ops.key" --set frame_rate=10 --log-level warn >"$work/alpha.log" 2>&1 &
+daemons+=($!)
+on 2 "$flagd" --prefix BETA_ --key-file "$work/ops.key" --set frame_rate=10 --log-level warn >"$work/beta.log" 2>&1 &
+daemons+=($!)
+for prefix in ALPHA_ BETA_; do
+  if on 5 bash -c "source '$(dirname "$0")/checks.sh'; await_server '$flagctl' $prefix"; then
+    pass "host 5 hears the server $prefix across the bridge"
+  else
+    fail "no STATUS of $prefix on host 5"
+    finish
+  fi
+done
+
+# The recorders ask for a keyframe and checkpoint as they start: signed, as every keyframe request
+# to a server with keys must be.
+on 3 "$flagctl" --key-file "$work/ops.key" --prefix ALPHA_ record -o "$work/alpha.lcmlog" --duration 12 \
+  >"$work/record-alpha.txt" 2>&1 &
+recorders=($!)
+on 3 "$flagctl" --key-file "$work/ops.key" --prefix BETA_ record -o "$work/beta.lcmlog" --duration 12 \
+  >"$work/record-beta.txt" 2>&1 &
+recorders+=($!)
+sleep 2
+
+steer() { on 5 "$flagctl" --key-file "$work/ops.key" --timeout 10 "$@"; }
+expect 0 "a wind for ALPHA_ from host 5, through the loss" steer --prefix ALPHA_ wind 9 0 2
+matches "accepted at step" "  accepted"
+expect 0 "a stiffness for BETA_ from host 5" steer --prefix BETA_ set stiffness=3500
+expect 0 "ALPHA_'s parameters" on 5 "$flagctl" --timeout 10 --prefix ALPHA_ params
+if grep -E "^stiffness " "$work/out" | grep -qv "3500"; then pass "  ALPHA_ kept its stiffness: the command reached BETA_ only"
+else fail "  ALPHA_'s stiffness changed" "$work/out"; fi
+expect 0 "BETA_'s parameters" on 5 "$flagctl" --timeout 10 --prefix BETA_ params
+matches "^stiffness +3500 " "  BETA_ took it"
+
+# Clocks that differ: host 5 runs 20 s ahead (within the 30 s window), then 45 s ahead.
+expect 0 "a signed command from a host whose clock is 20 s ahead is taken" \
+  on 5 env FAKETIME_DONT_FAKE_MONOTONIC=1 faketime -f +20s "$flagctl" --key-file "$work/ops.key" --timeout 10 \
+  --prefix ALPHA_ set damping=0.08
+expect 3 "one from a host 45 s ahead is refused" \
+  on 5 env FAKETIME_DONT_FAKE_MONOTONIC=1 faketime -f +45s "$flagctl" --key-file "$work/ops.key" --timeout 10 \
+  --prefix ALPHA_ set damping=0.09
+contains "stale" "  as stale, saying so"
+
+for prefix in ALPHA_ BETA_; do
+  expect 0 "$prefix's status" on 5 "$flagctl" --timeout 10 --prefix "$prefix" status
+  factor=$(sed -n 's/^real-time factor: *\([0-9.]*\).*/\1/p' "$work/out")
+  if awk -v f="$factor" 'BEGIN { exit !(f >= 0.9) }'; then pass "  $prefix holds real time beside the other (factor $factor)"
+  else fail "  $prefix's real-time factor is $factor" "$work/out"; fi
+done
+
+wait "${recorders[@]}" || true
+for name in alpha beta; do
+  prefix=${name^^}_
+  cat "$work/record-$name.txt"
+  expect 0 "the recording of $prefix on host 3 replays bit for bit" "$flagd" replay --prefix "$prefix" "$work/$name.lcmlog"
+  contains "every hash equal, bit for bit" "  every hash equal"
+  matches "[1-9][0-9]* command\(s\)" "  with the commands host 5 sent it"
+done
+finish
