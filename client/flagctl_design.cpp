@@ -19,7 +19,8 @@ namespace {
 bool NamesAFile(const std::string& argument) {
   std::error_code ignored;
   const std::filesystem::path path(argument);
-  return std::filesystem::exists(path, ignored) || path.has_extension() || argument.find('/') != std::string::npos;
+  return std::filesystem::exists(path, ignored) || path.has_extension() ||
+         argument.find('/') != std::string::npos;
 }
 
 int SendImage(const Globals& globals, const std::string& path) {
@@ -40,11 +41,14 @@ int SendImage(const Globals& globals, const std::string& path) {
 
 void AddDesignCommand(CLI::App& app, Invocation& invocation) {
   CLI::App* design = app.add_subcommand(
-      "design", "show a built-in design on the flag (the design parameter), or a PNG or JPEG file of your own");
+      "design",
+      "show a built-in design on the flag (the design parameter), or a PNG or JPEG file of your own");
   auto name = std::make_shared<std::string>();
-  design->add_option("NAME|FILE", *name,
-                     "nordic_cross, tricolour or checker; or an image file: its transparent pixels cut the flag's "
-                     "outline, and the flag's width follows its aspect unless a width was set")
+  design
+      ->add_option(
+          "NAME|FILE", *name,
+          "nordic_cross, tricolour or checker; or an image file: its transparent pixels cut the flag's "
+          "outline, and the flag's width follows its aspect unless a width was set")
       ->required();
   invocation.RunOnParse(design, [&invocation, name] {
     if (!NamesAFile(*name)) return SendParams(invocation.globals, {"design=" + *name}, false);

@@ -12,7 +12,9 @@
 namespace flagsim {
 namespace {
 
-std::string Size(int64_t width, int64_t height) { return std::to_string(width) + " x " + std::to_string(height) + " px"; }
+std::string Size(int64_t width, int64_t height) {
+  return std::to_string(width) + " x " + std::to_string(height) + " px";
+}
 
 /// "" if width x height px are within the limits, else what is wrong and what is allowed.
 std::string CheckPixels(int64_t width, int64_t height) {
@@ -23,7 +25,9 @@ std::string CheckPixels(int64_t width, int64_t height) {
 }
 
 bool IsPng(const uint8_t* data, size_t size) { return size >= 8 && png_sig_cmp(data, 0, 8) == 0; }
-bool IsJpeg(const uint8_t* data, size_t size) { return size >= 3 && data[0] == 0xff && data[1] == 0xd8 && data[2] == 0xff; }
+bool IsJpeg(const uint8_t* data, size_t size) {
+  return size >= 3 && data[0] == 0xff && data[1] == 0xd8 && data[2] == 0xff;
+}
 
 // ---- PNG: libpng's simplified API, which reports errors in image.message, no longjmp to us.
 
@@ -158,7 +162,8 @@ bool RgbaImage::HasTransparency() const {
 std::string Sha256Hex(const uint8_t* data, size_t size) {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
-  if (EVP_Digest(data, size, digest, &length, EVP_sha256(), nullptr) != 1) throw std::runtime_error("SHA-256 failed");
+  if (EVP_Digest(data, size, digest, &length, EVP_sha256(), nullptr) != 1)
+    throw std::runtime_error("SHA-256 failed");
   static constexpr char kHex[] = "0123456789abcdef";
   std::string hex;
   for (unsigned int i = 0; i < length; ++i) {

@@ -16,8 +16,8 @@
 namespace flagsim {
 
 constexpr size_t kMaxDesignFileBytes = 4u << 20;  ///< 4 MiB
-constexpr int kMaxDesignSide = 8192;               ///< px, either side
-constexpr int64_t kMaxDesignPixels = 16 << 20;     ///< 16 Mpx (4096 x 4096)
+constexpr int kMaxDesignSide = 8192;              ///< px, either side
+constexpr int64_t kMaxDesignPixels = 16 << 20;    ///< 16 Mpx (4096 x 4096)
 
 /// The limits in words, for the errors that name them.
 std::string DesignLimits();

@@ -37,9 +37,9 @@ struct Channels {
   std::string status;    ///< status_t
   std::string timeline;  ///< timeline_t
   // server -> clients, for replay
-  std::string applied;     ///< applied_command_t
-  std::string model;       ///< model_t: auto's decisions, journaled in APPLIED only
-  std::string checkpoint;  ///< checkpoint_t
+  std::string applied;      ///< applied_command_t
+  std::string model;        ///< model_t: auto's decisions, journaled in APPLIED only
+  std::string checkpoint;   ///< checkpoint_t
   std::string design_file;  ///< design_piece_t: the design's image in force, for replay
 
   /// "FLAGSIM_WIND" -> "WIND"; a channel without the prefix comes back unchanged.

@@ -2,8 +2,8 @@
 // stdout and an optional CSV.
 //
 //   build/bench/lab EXPERIMENT [--csv FILE]
-//   EXPERIMENT: orders | work-precision | stability | cost | threads | cheapest | shape | horizon | views | cost-model | auto
-//   shape also takes --scene, --grid (repeated), --set NAME=VALUE (repeated), --warmup,
+//   EXPERIMENT: orders | work-precision | stability | cost | threads | cheapest | shape | horizon | views |
+//   cost-model | auto shape also takes --scene, --grid (repeated), --set NAME=VALUE (repeated), --warmup,
 //   --seconds, --batches
 //   build/bench/lab points|point|gather ...: an experiment as independent points, for
 //   scripts/sweep (sweep_points.hpp)
@@ -35,7 +35,8 @@ int SweepCommand(int argc, char** argv) {
   } else {
     app.add_option("--points", points, "the sweep's points.txt")->required()->check(CLI::ExistingFile);
     app.add_option("--chunk", chunk, "points per task")->check(CLI::PositiveNumber);
-    if (command == "point") app.add_option("--index", index, "the task: 0, 1, ...")->required()->check(CLI::NonNegativeNumber);
+    if (command == "point")
+      app.add_option("--index", index, "the task: 0, 1, ...")->required()->check(CLI::NonNegativeNumber);
   }
   try {
     app.parse(argc - 1, argv + 1);
@@ -66,9 +67,12 @@ int main(int argc, char** argv) {
       {"views", flagsim::lab::Views},
       {"cost-model", flagsim::lab::CostModelFit},
       {"auto", flagsim::lab::AutoChoice},
-      {"orders", flagsim::lab::Orders},          {"work-precision", flagsim::lab::WorkPrecision},
-      {"stability", flagsim::lab::StabilityMap}, {"cost", flagsim::lab::Cost},
-      {"threads", flagsim::lab::Threads},        {"cheapest", flagsim::lab::Cheapest},
+      {"orders", flagsim::lab::Orders},
+      {"work-precision", flagsim::lab::WorkPrecision},
+      {"stability", flagsim::lab::StabilityMap},
+      {"cost", flagsim::lab::Cost},
+      {"threads", flagsim::lab::Threads},
+      {"cheapest", flagsim::lab::Cheapest},
   };
   CLI::App app{"lab: how flagsim's integrators compare in accuracy, stability, cost and threads"};
   std::string experiment, csv;

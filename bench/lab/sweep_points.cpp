@@ -64,7 +64,8 @@ PointsFile ReadPointsFile(const std::string& path) {
   file.directory = fs::path(path).parent_path();
   std::string line;
   if (!std::getline(in, line) || line.rfind(kHeader, 0) != 0)
-    throw std::runtime_error(path + ": not a points file (its first line is not '" + kHeader + "EXPERIMENT')");
+    throw std::runtime_error(path + ": not a points file (its first line is not '" + kHeader +
+                             "EXPERIMENT')");
   file.experiment = line.substr(sizeof(kHeader) - 1);
   while (std::getline(in, line)) {
     if (!line.empty()) file.points.push_back(Parse(line));
@@ -145,8 +146,8 @@ std::vector<std::string> WorkPrecisionPointRow(const Point& point, std::optional
   trial.params.integrator = sim::IntegratorKind(found - names.begin());
   if (iterations != "-") trial.params.solver_iterations = std::stoi(iterations);
   const int substeps = std::stoi(Field(point, "substeps"));
-  return WorkPrecisionRow(**scene, name, iterations, trial.horizon / substeps, RunFixed<double>(trial, substeps),
-                          CostPerSimulatedSecond(trial, substeps, 3));
+  return WorkPrecisionRow(**scene, name, iterations, trial.horizon / substeps,
+                          RunFixed<double>(trial, substeps), CostPerSimulatedSecond(trial, substeps, 3));
 }
 
 // ---- render -----------------------------------------------------------------------------------
@@ -165,7 +166,8 @@ std::vector<std::string> RenderPointRow(const Point& point, const fs::path& fram
   OfflineRender render(scene, std::stod(Field(point, "duration")), channels, nullptr,
                        [&](int64_t id, const render::Framebuffer& image) {
                          const std::string png = PngFramePath(frames.string(), id);
-                         const std::string failed = WritePng(png, image.width, image.height, image.rgb.data());
+                         const std::string failed =
+                             WritePng(png, image.width, image.height, image.rgb.data());
                          if (!failed.empty()) throw std::runtime_error(failed);
                          digests += Sha256Hex(image.rgb.data(), image.rgb.size());
                        });
@@ -191,7 +193,9 @@ int WritePoints(const std::string& experiment, const PointsOptions& options, con
   } else if (experiment == "render") {
     for (const std::string& scene : options.scenes) {
       LoadScene(scene);  // a scene that does not load is refused now, not in every task
-      points.push_back({{"scene", scene}, {"duration", Table::Number(options.duration)}, {"fps", Table::Number(options.fps)}});
+      points.push_back({{"scene", scene},
+                        {"duration", Table::Number(options.duration)},
+                        {"fps", Table::Number(options.fps)}});
     }
   } else {
     ColumnsOf(experiment);  // throws, naming what is allowed
@@ -243,13 +247,14 @@ int GatherRecords(const std::string& points_file, int chunk) {
     for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
     table.Add(fields);
   }
-  std::printf("# %zu of %zu points gathered into %s\n", file.points.size() - missing.size(), file.points.size(),
-              (file.directory / (file.experiment + ".csv")).c_str());
+  std::printf("# %zu of %zu points gathered into %s\n", file.points.size() - missing.size(),
+              file.points.size(), (file.directory / (file.experiment + ".csv")).c_str());
   for (const std::string& node : nodes) std::printf("# ran on: %s\n", node.c_str());
   std::set<std::string> models;
   for (const std::string& node : nodes) models.insert(node.substr(node.find("; ") + 2));
   if (models.size() > 1)
-    std::printf("# costs come from %zu kinds of CPU: compare a cost only with those of its own node\n", models.size());
+    std::printf("# costs come from %zu kinds of CPU: compare a cost only with those of its own node\n",
+                models.size());
   if (missing.empty()) return 0;
   std::string points, tasks;
   std::set<int> task_set;

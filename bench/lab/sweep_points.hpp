@@ -27,10 +27,10 @@ namespace flagsim::lab {
 using Point = std::map<std::string, std::string>;
 
 struct PointsOptions {
-  bool quick = false;                ///< work-precision: two integrators, three steps each
-  std::vector<std::string> scenes;   ///< render: presets or scene files
-  double duration = 1;               ///< render: s of simulated time
-  double fps = 10;                   ///< render: frames per simulated second
+  bool quick = false;               ///< work-precision: two integrators, three steps each
+  std::vector<std::string> scenes;  ///< render: presets or scene files
+  double duration = 1;              ///< render: s of simulated time
+  double fps = 10;                  ///< render: frames per simulated second
 };
 
 /// Writes DIR/points.txt for `experiment` (work-precision or render); returns the points' count.

@@ -23,7 +23,8 @@ std::string NameOf(const json& request, std::string* name) {
 /// An integer field 0 .. max; "" or what is wrong.
 std::string Integer(const json& request, const char* field, int64_t max, int64_t* value) {
   const auto found = request.find(field);
-  if (found == request.end() || !found->is_number_integer() || found->get<int64_t>() < 0 || found->get<int64_t>() > max)
+  if (found == request.end() || !found->is_number_integer() || found->get<int64_t>() < 0 ||
+      found->get<int64_t>() > max)
     return std::string(field) + ": required, an integer 0 .. " + std::to_string(max);
   *value = found->get<int64_t>();
   return "";
@@ -71,9 +72,11 @@ DesignUploads::Step DesignUploads::Take(int client, const json& request) {
   step.problem = Integer(request, "size", int64_t(kMaxDesignFileBytes), &size);
   if (step.problem.empty()) step.problem = Integer(request, "offset", size, &offset);
   std::vector<uint8_t> part;
-  if (step.problem.empty() && (!request["data"].is_string() || !DecodeBase64(request["data"].get<std::string>(), &part)))
+  if (step.problem.empty() &&
+      (!request["data"].is_string() || !DecodeBase64(request["data"].get<std::string>(), &part)))
     step.problem = "data: must be the part's bytes in base64";
-  if (step.problem.empty() && (part.empty() || part.size() > kMaxPartBytes || offset + int64_t(part.size()) > size))
+  if (step.problem.empty() &&
+      (part.empty() || part.size() > kMaxPartBytes || offset + int64_t(part.size()) > size))
     step.problem = "data: " + std::to_string(part.size()) + " bytes at offset " + std::to_string(offset) +
                    "; allowed 1 .. " + std::to_string(kMaxPartBytes) + " bytes a part, within size " +
                    std::to_string(size);
@@ -85,7 +88,8 @@ DesignUploads::Step DesignUploads::Take(int client, const json& request) {
   if (step.problem.empty() && (found->second.name != name || found->second.size != size ||
                                int64_t(found->second.bytes.size()) != offset))
     step.problem = "offset: " + std::to_string(offset) + "; the upload of " + found->second.name + " holds " +
-                   std::to_string(found->second.bytes.size()) + " bytes: send its parts in order, from offset 0";
+                   std::to_string(found->second.bytes.size()) +
+                   " bytes: send its parts in order, from offset 0";
   if (!step.problem.empty()) {
     uploads_.erase(client);
     return step;

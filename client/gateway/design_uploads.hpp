@@ -19,12 +19,13 @@ namespace flagsim::gateway {
 
 class DesignUploads {
  public:
-  static constexpr size_t kMaxPartBytes = 144 * 1024;  ///< decoded: 192 KiB of base64, within a WebSocket message
+  static constexpr size_t kMaxPartBytes =
+      144 * 1024;  ///< decoded: 192 KiB of base64, within a WebSocket message
 
   struct Step {
-    std::string problem;      ///< "" or why the request is refused (the upload is dropped)
-    std::string built_in;     ///< a built-in design's name: set it by PARAM
-    bool whole = false;       ///< the last part came: `name` and `bytes` are the checked file
+    std::string problem;   ///< "" or why the request is refused (the upload is dropped)
+    std::string built_in;  ///< a built-in design's name: set it by PARAM
+    bool whole = false;    ///< the last part came: `name` and `bytes` are the checked file
     std::string name;
     std::vector<uint8_t> bytes;
     int64_t held = 0, size = 0;  ///< an upload under way: bytes held so far, of size

@@ -5,15 +5,15 @@
 
 #include "client/gateway/bus_json.hpp"
 #include "client/gateway/command_requests.hpp"
-#include "common/design_image.hpp"
-#include "messages/design_pieces.hpp"
 #include "client/gateway/compressed_image.hpp"
 #include "client/gateway/foxglove_wire.hpp"
 #include "client/gateway/mcap_export.hpp"
 #include "client/gateway/process_usage.hpp"
 #include "client/gateway/scene_update.hpp"
 #include "client/stream_reader.hpp"
+#include "common/design_image.hpp"
 #include "flagsim/refresh_request_t.hpp"
+#include "messages/design_pieces.hpp"
 
 namespace flagsim::gateway {
 namespace {
@@ -134,7 +134,8 @@ void Gateway::OnFrame(const frame_t& manifest) {
   incomplete_in_a_row_ = 0;
   ++counters_.frames_mirrored;
   const json camera = CameraJson(manifest);
-  if (CameraMoved(camera, &last_camera_)) feeds_[kCameraChannel].Publish(Nanoseconds(manifest.utime), JsonText(camera));
+  if (CameraMoved(camera, &last_camera_))
+    feeds_[kCameraChannel].Publish(Nanoseconds(manifest.utime), JsonText(camera));
   if (frame->image) {
     feeds_[kImageChannel].PublishLazily(Nanoseconds(frame->utime), [frame] {
       return CompressedImageJson(EncodeJpeg(frame->image->data(), frame->width, frame->height), frame->utime);
@@ -302,8 +303,9 @@ void Gateway::DesignRequest(int client, const json& request,
     return reply(*Client(client), CommandResultJson(held, "DESIGN", 0));
   }
   const std::string digest = Sha256Hex(step.bytes.data(), step.bytes.size());
-  RelayPieces(client, std::make_shared<const std::vector<design_piece_t>>(
-                          SplitDesignFile(step.name, digest, step.bytes, relay_.client_id(), 0)),
+  RelayPieces(client,
+              std::make_shared<const std::vector<design_piece_t>>(
+                  SplitDesignFile(step.name, digest, step.bytes, relay_.client_id(), 0)),
               0, std::move(reply));
 }
 

@@ -63,7 +63,7 @@ struct GatewayCounters {
   uint64_t incomplete_frames = 0;
   uint64_t frames_mirrored = 0;
   uint64_t server_restarts = 0;  ///< a new server id on STATE or STATUS after another one
-  int64_t bus_undecodable = 0;  ///< messages on the server's channels that are not their type
+  int64_t bus_undecodable = 0;   ///< messages on the server's channels that are not their type
 };
 
 class Gateway {

@@ -68,7 +68,8 @@ namespace {
 /// machine), then 127.0.0.1 for this one.
 std::vector<std::string> UrlHosts(const tcp::endpoint& endpoint) {
   const net::ip::address address = endpoint.address();
-  if (!address.is_unspecified()) return {address.is_v6() ? "[" + address.to_string() + "]" : address.to_string()};
+  if (!address.is_unspecified())
+    return {address.is_v6() ? "[" + address.to_string() + "]" : address.to_string()};
   std::vector<std::string> hosts;
   ifaddrs* interfaces = nullptr;
   if (getifaddrs(&interfaces) == 0) {
@@ -105,7 +106,8 @@ class EventLoop {
   void Accept() {
     acceptor_.async_accept([this](boost::system::error_code error, tcp::socket socket) {
       if (!error && context_.tls) std::make_shared<TlsDetector>(std::move(socket), context_)->Start();
-      if (!error && !context_.tls) std::make_shared<HttpSession<PlainStream>>(PlainStream(std::move(socket)), context_)->Start();
+      if (!error && !context_.tls)
+        std::make_shared<HttpSession<PlainStream>>(PlainStream(std::move(socket)), context_)->Start();
       Accept();
     });
   }
@@ -205,10 +207,12 @@ int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
   }
   if (tls) {
     std::printf("flagctl serve: TLS %s certificate %s, SHA-256 fingerprint %s%s\n",
-                tls->self_signed ? "self-signed" : "", tls->certificate_path.c_str(), tls->fingerprint.c_str(),
+                tls->self_signed ? "self-signed" : "", tls->certificate_path.c_str(),
+                tls->fingerprint.c_str(),
                 tls->self_signed ? " (check it against the browser's before trusting it)" : "");
   } else if (!endpoint.address().is_loopback()) {
-    std::printf("flagctl serve: warning: plain HTTP beyond loopback: the token crosses the network in clear\n");
+    std::printf(
+        "flagctl serve: warning: plain HTTP beyond loopback: the token crosses the network in clear\n");
   }
   std::printf("flagctl serve: bus %s, prefix %s; recordings go to %s/\n", bus.url().c_str(),
               channels.prefix.c_str(), options.record_directory.c_str());

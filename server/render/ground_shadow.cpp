@@ -68,7 +68,9 @@ void GroundShadow::Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, cons
                         const Opacity& opacity) {
   const Eigen::Vector2f* corners[3] = {&a, &b, &c};
   // Barycentric weights of point p: the areas opposite each corner over the whole (signed).
-  const auto cross = [](const Eigen::Vector2f& u, const Eigen::Vector2f& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const auto cross = [](const Eigen::Vector2f& u, const Eigen::Vector2f& v) {
+    return u.x() * v.y() - u.y() * v.x();
+  };
   const float area = cross(b - a, c - a);
   if (area == 0) return;
   const float low = std::min({a.y(), b.y(), c.y()}), high = std::max({a.y(), b.y(), c.y()});
@@ -90,7 +92,8 @@ void GroundShadow::Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, cons
     float* row = &texels_[size_t(y) * kTexels];
     for (int x = first; x <= last; ++x) {
       const Eigen::Vector2f p(float(x) + 0.5f, centre);
-      const Eigen::Vector3f weight(cross(b - p, c - p) / area, cross(c - p, a - p) / area, cross(a - p, b - p) / area);
+      const Eigen::Vector3f weight(cross(b - p, c - p) / area, cross(c - p, a - p) / area,
+                                   cross(a - p, b - p) / area);
       row[x] = std::max(row[x], opacity(weight));
     }
   }

@@ -50,7 +50,8 @@ class GroundShadow {
   /// One projected triangle's texels, each as dark as `opacity` (a function of the texel
   /// centre's barycentric weights, 0 .. 1) says: the pattern's alpha for a cut surface.
   template <class Opacity>
-  void Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c, const Opacity& opacity);
+  void Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c,
+            const Opacity& opacity);
   void Blur();
 
   Eigen::Vector2f origin_ = Eigen::Vector2f::Zero();     ///< m, the map's (x, z) corner

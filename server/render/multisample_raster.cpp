@@ -156,7 +156,8 @@ class MultisampledRows {
       float fx[kSpanLanes], fy[kSpanLanes];
       for (int i = 0; i < kSpanLanes; ++i) {
         const int x = std::min(x0 + i, x_last_);
-        for (int k = 0; k < pattern_.count; ++k) inside[i] |= int32_t(row[k].first <= x && x <= row[k].last) << k;
+        for (int k = 0; k < pattern_.count; ++k)
+          inside[i] |= int32_t(row[k].first <= x && x <= row[k].last) << k;
         if (x0 + i > x_last_) inside[i] = 0;
         any |= inside[i];
         fx[i] = float(x - t_.min_x) + pattern_.centroid_x[inside[i]];

@@ -1,7 +1,7 @@
 // The flag's pattern: an RGB8 texture made from a design, with an alpha channel where the design
-// has transparent parts (a person's image: transparent pixels cut the flag's outline). The tiles sample it filtered
-// (texture_filter.hpp); Sample here picks the nearest texel (a wireframe line's colour).
-// (u, v) in [0, 1]^2: u runs along the flag from the hoist, v down from the top edge.
+// has transparent parts (a person's image: transparent pixels cut the flag's outline). The tiles sample it
+// filtered (texture_filter.hpp); Sample here picks the nearest texel (a wireframe line's colour). (u, v) in
+// [0, 1]^2: u runs along the flag from the hoist, v down from the top edge.
 #pragma once
 
 #include <cstdint>
@@ -13,8 +13,9 @@ namespace flagsim::render {
 struct Texture {
   int width = 0;
   int height = 0;
-  std::vector<uint8_t> rgb;    ///< row-major, top row (v = 0) first; sRGB
-  std::vector<uint8_t> alpha;  ///< a byte per texel, the same order, straight (not premultiplied); empty: opaque
+  std::vector<uint8_t> rgb;  ///< row-major, top row (v = 0) first; sRGB
+  std::vector<uint8_t>
+      alpha;  ///< a byte per texel, the same order, straight (not premultiplied); empty: opaque
 
   /// The texel under (u, v), clamped to the edges.
   const uint8_t* Sample(float u, float v) const { return &rgb[Texel(u, v) * 3]; }

@@ -225,8 +225,9 @@ inline bool BoxMayBeShadowed(const TriangleSetup& t, const GroundShadow& shadow,
 
 /// Calls fill(shader) with the shader for triangle t in the context's mode, over the box of
 /// pixels [x0, x1] x [y0, y1] of a tile: BlockShader for flat and Gouraud, of the material's
-/// surface (kCutout for a pattern with transparent texels; kShadowed only where the box's ground may be in shadow: its corners' (u, v) span
-/// the ground it shows, a projective image of the box), PhongShader for Phong.
+/// surface (kCutout for a pattern with transparent texels; kShadowed only where the box's ground may be in
+/// shadow: its corners' (u, v) span the ground it shows, a projective image of the box), PhongShader for
+/// Phong.
 template <class Fill>
 void WithShader(const TriangleSetup& t, const ShadeContext& context, const Planes& planes, int x0, int y0,
                 int x1, int y1, const Fill& fill) {
@@ -234,7 +235,8 @@ void WithShader(const TriangleSetup& t, const ShadeContext& context, const Plane
   if (context.mode == ShadingMode::kPhong) {
     fill(PhongShader(t, context, planes));
   } else if (material.patterned && context.pattern->has_alpha()) {
-    fill(BlockShader<Surface::kCutout>(planes, material, context, context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
+    fill(BlockShader<Surface::kCutout>(planes, material, context,
+                                       context.pattern->LevelOfDetail(t.uv_area_per_pixel)));
   } else if (material.patterned) {
     fill(BlockShader<Surface::kPatterned>(planes, material, context,
                                           context.pattern->LevelOfDetail(t.uv_area_per_pixel)));

@@ -6,7 +6,9 @@
 namespace flagsim::render {
 namespace {
 
-uint64_t Pack(uint64_t r, uint64_t g, uint64_t b, uint64_t alpha) { return r | g << 16 | b << 32 | alpha << 48; }
+uint64_t Pack(uint64_t r, uint64_t g, uint64_t b, uint64_t alpha) {
+  return r | g << 16 | b << 32 | alpha << 48;
+}
 uint64_t Channel(uint64_t texel, int k) { return texel >> (16 * k) & 0xffff; }
 
 /// Level k + 1 from level k: each texel the rounded mean of a 2 x 2 block (of light, and alpha).
@@ -20,10 +22,13 @@ FilteredTexture::Level HalfOf(const FilteredTexture::Level& level) {
   };
   for (int y = 0; y < half.height; ++y) {
     for (int x = 0; x < half.width; ++x) {
-      const uint64_t block[4] = {at(2 * x, 2 * y), at(2 * x + 1, 2 * y), at(2 * x, 2 * y + 1), at(2 * x + 1, 2 * y + 1)};
+      const uint64_t block[4] = {at(2 * x, 2 * y), at(2 * x + 1, 2 * y), at(2 * x, 2 * y + 1),
+                                 at(2 * x + 1, 2 * y + 1)};
       uint64_t mean[4];
       for (int k = 0; k < 4; ++k) {
-        mean[k] = (Channel(block[0], k) + Channel(block[1], k) + Channel(block[2], k) + Channel(block[3], k) + 2) / 4;
+        mean[k] =
+            (Channel(block[0], k) + Channel(block[1], k) + Channel(block[2], k) + Channel(block[3], k) + 2) /
+            4;
       }
       half.texels[size_t(y) * half.width + x] = Pack(mean[0], mean[1], mean[2], mean[3]);
     }

@@ -112,7 +112,8 @@ inline void FilteredTexture::Sampler::SampleStraight(float u, float v, float rgb
 inline FilteredTexture::Sampler FilteredTexture::SamplerAt(float lod) const {
   const int last = int(levels_.size()) - 1;
   const int level = std::clamp(int(lod), 0, last);
-  return {&levels_[size_t(level)], &levels_[size_t(std::min(level + 1, last))], level < last ? lod - float(level) : 0.0f};
+  return {&levels_[size_t(level)], &levels_[size_t(std::min(level + 1, last))],
+          level < last ? lod - float(level) : 0.0f};
 }
 
 inline void FilteredTexture::Sample(float u, float v, float lod, float rgb[3]) const {

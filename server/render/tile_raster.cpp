@@ -23,8 +23,8 @@ uint32_t ToByte(float value) { return uint32_t(std::clamp(value * 255.0f + 0.5f,
 /// to those pixels. Lanes past the span repeat its last pixel and are masked off. `at` holds
 /// the planes along the row; depth and rgbx point at the span's first pixel.
 template <class Shader>
-void FillSpan(const Shader& shader, const Planes& planes, const float at[Planes::kCount],
-              float fx0, int n, float* depth, uint32_t* rgbx) {
+void FillSpan(const Shader& shader, const Planes& planes, const float at[Planes::kCount], float fx0, int n,
+              float* depth, uint32_t* rgbx) {
   const float z_at = at[Planes::kDepth], z_step = planes.dx[Planes::kDepth];
   for (int start = 0; start < n; start += kSpanLanes, depth += kSpanLanes, rgbx += kSpanLanes) {
     float fx[kSpanLanes];
@@ -51,8 +51,8 @@ void FillSpan(const Shader& shader, const Planes& planes, const float at[Planes:
 /// first, and a pixel is drawn where its alpha is at least 1/2 and it is in front. (With more
 /// than one sample, alpha chooses how many samples it covers: multisample_raster.cpp.)
 template <class Shader>
-void FillSpanCutout(const Shader& shader, const Planes& planes, const float at[Planes::kCount], float fx0, int n,
-                    float* depth, uint32_t* rgbx) {
+void FillSpanCutout(const Shader& shader, const Planes& planes, const float at[Planes::kCount], float fx0,
+                    int n, float* depth, uint32_t* rgbx) {
   const float z_at = at[Planes::kDepth], z_step = planes.dx[Planes::kDepth];
   for (int start = 0; start < n; start += kSpanLanes, depth += kSpanLanes, rgbx += kSpanLanes) {
     float fx[kSpanLanes], alpha[kSpanLanes];
@@ -76,8 +76,7 @@ void FillSpanCutout(const Shader& shader, const Planes& planes, const float at[P
 template <class Shader>
 class PixelBlocks {
  public:
-  PixelBlocks(const Shader& shader, const Planes& planes, const TriangleSetup& t,
-              const TileTarget& target)
+  PixelBlocks(const Shader& shader, const Planes& planes, const TriangleSetup& t, const TileTarget& target)
       : shader_(shader), planes_(planes), t_(t), target_(target) {}
 
   /// Pixels first .. last of row y into the block, which is shaded whenever it is full.
@@ -176,8 +175,8 @@ void RgbxToRgb(const uint32_t* rgbx, int n, uint8_t* rgb) {
 /// Phong, for the n pixels of a row from fx0 pixels past the box's first column, each shaded
 /// only where it passes the depth test. `at` holds the planes along the row; depth and rgbx
 /// point at the span's first pixel.
-void FillSpanPhong(const PhongShader& shader, const Planes& planes, const float at[Planes::kCount], float fx0, int n,
-                   float* depth, uint32_t* rgbx) {
+void FillSpanPhong(const PhongShader& shader, const Planes& planes, const float at[Planes::kCount], float fx0,
+                   int n, float* depth, uint32_t* rgbx) {
   for (int i = 0; i < n; ++i) {
     const float fx = fx0 + float(i);
     const float depth_here = at[Planes::kDepth] + planes.dx[Planes::kDepth] * fx;

@@ -99,9 +99,9 @@ std::string LoadDesignFile(const std::string& path, DesignFilePtr* file) {
     return path + ": the file is " + std::to_string(size) + " bytes; allowed: " + DesignLimits();
   std::ifstream in(path, std::ios::binary);
   std::vector<uint8_t> bytes(size);
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
-    return "cannot read " + path;
-  const std::string problem = MakeDesignFile(std::filesystem::path(path).filename().string(), std::move(bytes), file);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))) return "cannot read " + path;
+  const std::string problem =
+      MakeDesignFile(std::filesystem::path(path).filename().string(), std::move(bytes), file);
   return problem.empty() ? "" : path + ": " + problem;
 }
 

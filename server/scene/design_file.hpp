@@ -19,7 +19,7 @@
 namespace flagsim {
 
 struct DesignFile {
-  static constexpr int kMaxTexels = 1536;         ///< the texture's longer side, at most
+  static constexpr int kMaxTexels = 1536;        ///< the texture's longer side, at most
   static constexpr size_t kMaxNameLength = 128;  ///< characters of its name
 
   std::string name;            ///< the file's name as given (no folders): what the user sees

@@ -6,10 +6,10 @@
 #include <string>
 
 #include "server/render/camera.hpp"
-#include "server/scene/design_file.hpp"
 #include "server/render/pattern.hpp"
 #include "server/render/sample_pattern.hpp"
 #include "server/render/shading_mode.hpp"
+#include "server/scene/design_file.hpp"
 #include "server/sim/sim_params.hpp"
 #include "server/sim/timeline.hpp"
 #include "server/sim/wind_field.hpp"

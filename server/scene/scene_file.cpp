@@ -48,7 +48,8 @@ void ReadParameters(const toml::table& table, const std::string& source, Scene* 
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     if (name == "width") scene->service.width_follows_design = false;  // the scene sets it
-    if (name == "design") throw SceneError(Where(source, node) + "design goes at the top level: design = \"NAME\" or \"PATH\"");
+    if (name == "design")
+      throw SceneError(Where(source, node) + "design goes at the top level: design = \"NAME\" or \"PATH\"");
     const std::string text = ValueText(node);
     const std::string problem = text.empty() ? name + ": not a number, switch or name"
                                              : ParameterTable::Get().Assign(name, text, scene);
@@ -61,7 +62,8 @@ void ReadParameters(const toml::table& table, const std::string& source, Scene* 
 void ReadDesign(const toml::node& node, const std::string& source, Scene* scene) {
   const auto value = node.value<std::string>();
   if (!value || value->empty())
-    throw SceneError(Where(source, node) + "design must be a string: a built-in design's name or an image's path");
+    throw SceneError(Where(source, node) +
+                     "design must be a string: a built-in design's name or an image's path");
   const std::vector<std::string>& names = render::FlagDesignNames();
   const bool built_in = std::find(names.begin(), names.end(), *value) != names.end();
   if (built_in && *value != "image") {

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <optional>
 
+#include "common/printable_text.hpp"
 #include "server/render/camera_moves.hpp"
 #include "server/scene/parameter_table.hpp"
-#include "common/printable_text.hpp"
 #include "server/scene/scene_timeline.hpp"
 #include "server/service/command_apply.hpp"
 #include "server/service/message_builders.hpp"
@@ -453,7 +453,8 @@ checkpoint_t MakeCheckpointMessage(const SessionSnapshot& snapshot, const std::s
   return message;
 }
 
-std::string ReadCheckpoint(const checkpoint_t& message, SessionSnapshot* snapshot, const DesignLibrary* designs) {
+std::string ReadCheckpoint(const checkpoint_t& message, SessionSnapshot* snapshot,
+                           const DesignLibrary* designs) {
   SessionSnapshot read;
   std::string problem = ReadScene(message.scene, "scene", designs, &read.scene);
   if (problem.empty()) problem = ReadScene(message.initial, "initial", designs, &read.initial);

@@ -5,8 +5,8 @@
 #include "common/printable_text.hpp"
 #include "flagsim/refresh_request_t.hpp"
 #include "messages/checked_decode.hpp"
-#include "server/sim/integrator.hpp"
 #include "server/scene/scene_timeline.hpp"
+#include "server/sim/integrator.hpp"
 
 namespace flagsim {
 namespace {
@@ -188,8 +188,8 @@ std::string TimeControlOf(const time_command_t& command, TimeControl* control) {
       control->steps = command.steps;
       return "";
     default:
-      return "operation: " + std::to_string(int(command.operation)) + " is not an operation; allowed 1 (PAUSE), " +
-             "2 (RESUME), 3 (STEP)";
+      return "operation: " + std::to_string(int(command.operation)) +
+             " is not an operation; allowed 1 (PAUSE), " + "2 (RESUME), 3 (STEP)";
   }
 }
 
@@ -231,7 +231,8 @@ std::string ApplyCommandBytes(const std::string& channel, const std::vector<uint
     return DecodeAndApply<design_piece_t>(data, [&](const auto& c) {
       const DesignFilePtr file = designs != nullptr ? designs->Find(c.digest) : nullptr;
       if (!file)
-        return "DESIGN: the image " + PrintableText(c.name, 128) + " (SHA-256 " + PrintableText(c.digest, 64) +
+        return "DESIGN: the image " + PrintableText(c.name, 128) + " (SHA-256 " +
+               PrintableText(c.digest, 64) +
                ") is not at hand: a recording holds it on DESIGN_FILE before the command";
       return session->ApplyDesign(file);
     });

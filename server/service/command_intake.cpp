@@ -142,7 +142,8 @@ void CommandIntake::OnMessage(const std::string& channel, const uint8_t* data, s
     // What changes the session goes into the journal; a REFRESH changes nothing, nor does a
     // DESIGN piece until it completes its file, which goes out whole first.
     const bool changed = channel != channels_.refresh && (channel != channels_.design || design_shown_);
-    if (journal_ != nullptr && design_shown_) journal_->DesignFile(*design_shown_, command->client_id, UnixMicros());
+    if (journal_ != nullptr && design_shown_)
+      journal_->DesignFile(*design_shown_, command->client_id, UnixMicros());
     if (journal_ != nullptr && changed)
       journal_->Applied(session_, channel, data, size, {command->client_id, command->key_id}, UnixMicros());
     ++stats_.commands_accepted;
@@ -252,8 +253,8 @@ std::string CommandIntake::ApplyDesignPiece(const design_piece_t& piece) {
   DesignAssembly::Outcome outcome = designs_.Add(piece);
   if (!outcome.problem.empty()) return outcome.problem;
   if (!outcome.whole) {
-    note_ = "held " + std::to_string(outcome.held) + " of " + std::to_string(piece.total_bytes) + " bytes of " +
-            piece.name;
+    note_ = "held " + std::to_string(outcome.held) + " of " + std::to_string(piece.total_bytes) +
+            " bytes of " + piece.name;
     return "";
   }
   DesignFilePtr file;

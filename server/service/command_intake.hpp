@@ -1,8 +1,8 @@
-// Command intake: the server's command channels (WIND, PARAM, CAMERA, KEYFRAME, TIME, DESIGN, REFRESH). Each message is
-// decoded from raw bytes with every length checked (wire::CheckedDecode), checked for its signature when
-// the server has keys (command_authenticator.hpp), answered on ACK, and applied to the session only if
-// valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the server. A retry
-// (same client id and sequence) gets the first answer again and is not applied twice.
+// Command intake: the server's command channels (WIND, PARAM, CAMERA, KEYFRAME, TIME, DESIGN, REFRESH). Each
+// message is decoded from raw bytes with every length checked (wire::CheckedDecode), checked for its
+// signature when the server has keys (command_authenticator.hpp), answered on ACK, and applied to the session
+// only if valid. Undecodable bytes are counted and dropped; nothing a client sends can stop the server. A
+// retry (same client id and sequence) gets the first answer again and is not applied twice.
 //
 //   bytes => decode => signed, authentic, fresh, new? => retry? => validate and apply => ACK
 //
@@ -129,15 +129,15 @@ class CommandIntake {
   std::vector<Settling> settling_;         ///< in the order they were applied
   bool params_changed_ = false;
   bool timeline_changed_ = false;
-  std::string note_;  ///< for the ACK of the command being applied, if it is accepted
+  std::string note_;            ///< for the ACK of the command being applied, if it is accepted
   DesignAssembly designs_;      ///< pieces of design files on their way
   DesignFilePtr design_shown_;  ///< the file the DESIGN piece being applied completed, if it did
   int64_t refresh_request_ = -1;
   bool tables_request_ = false;
   double last_drop_log_ = -INFINITY;  ///< s on the clock: the last logged drop (logged once a second)
   int64_t drops_since_log_ = 0;
-  double refusal_second_ = -INFINITY;  ///< s on the clock: when the current second of refusals began
-  int64_t refusals_in_second_ = 0;     ///< refusals in it: answered and logged up to the limit
+  double refusal_second_ = -INFINITY;     ///< s on the clock: when the current second of refusals began
+  int64_t refusals_in_second_ = 0;        ///< refusals in it: answered and logged up to the limit
   BusSubscriptions subscriptions_{bus_};  ///< last: dropped first, before what the handlers use
 };
 

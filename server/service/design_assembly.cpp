@@ -13,9 +13,9 @@ constexpr int64_t kPiece = design_piece_t::PIECE_BYTES;
 std::string CheckPiece(const design_piece_t& piece) {
   std::string problem = CheckDesignName(piece.name);
   if (!problem.empty()) return problem;
-  const bool hex = piece.digest.size() == 64 && std::all_of(piece.digest.begin(), piece.digest.end(), [](char c) {
-                     return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
-                   });
+  const bool hex = piece.digest.size() == 64 &&
+                   std::all_of(piece.digest.begin(), piece.digest.end(),
+                               [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
   if (!hex) return "digest: allowed the file's SHA-256 as 64 lowercase hex digits";
   if (piece.total_bytes < 1 || size_t(piece.total_bytes) > kMaxDesignFileBytes)
     return "total_bytes: " + std::to_string(piece.total_bytes) + "; allowed: " + DesignLimits();
@@ -24,8 +24,9 @@ std::string CheckPiece(const design_piece_t& piece) {
            " below total_bytes " + std::to_string(piece.total_bytes);
   const int64_t length = std::min<int64_t>(kPiece, piece.total_bytes - piece.offset);
   if (piece.num_bytes != length)
-    return "num_bytes: " + std::to_string(piece.num_bytes) + "; the piece at offset " + std::to_string(piece.offset) +
-           " of a file of " + std::to_string(piece.total_bytes) + " bytes holds " + std::to_string(length);
+    return "num_bytes: " + std::to_string(piece.num_bytes) + "; the piece at offset " +
+           std::to_string(piece.offset) + " of a file of " + std::to_string(piece.total_bytes) +
+           " bytes holds " + std::to_string(length);
   return "";
 }
 
@@ -35,7 +36,8 @@ DesignAssembly::Outcome DesignAssembly::Add(const design_piece_t& piece) {
   Outcome outcome;
   outcome.problem = CheckPiece(piece);
   if (!outcome.problem.empty()) return outcome;
-  auto it = std::find_if(files_.begin(), files_.end(), [&](const auto& entry) { return entry.first == piece.digest; });
+  auto it = std::find_if(files_.begin(), files_.end(),
+                         [&](const auto& entry) { return entry.first == piece.digest; });
   if (it == files_.end()) {
     if (files_.size() >= kMaxFiles) files_.pop_back();
     File file;
@@ -64,8 +66,9 @@ DesignAssembly::Outcome DesignAssembly::Add(const design_piece_t& piece) {
   if (file.held < int64_t(file.bytes.size())) return outcome;
   const std::string digest = Sha256Hex(file.bytes.data(), file.bytes.size());
   if (digest != piece.digest) {
-    outcome.problem = piece.name + ": the whole file's SHA-256 is " + digest + ", not the digest its pieces carry (" +
-                      piece.digest + "): a piece was damaged or mixed up; send the file again";
+    outcome.problem = piece.name + ": the whole file's SHA-256 is " + digest +
+                      ", not the digest its pieces carry (" + piece.digest +
+                      "): a piece was damaged or mixed up; send the file again";
   } else {
     outcome.whole = true;
     outcome.bytes = std::move(file.bytes);

@@ -50,8 +50,8 @@ const render::Framebuffer& FramePainter::Paint(const FrameInput& input, int thre
   const bool wireframe = input.shading == render::ShadingMode::kWireframe;
   const int factor = wireframe ? 1 : render::RefinementFor(grid_, input.camera);
   render::RefineGrid(grid_, factor, float(input.pole_radius), &surface_);
-  render::UpdateFlagMesh(surface_.cols, surface_.rows, surface_.x.data(), surface_.y.data(), surface_.z.data(),
-                         &scene_.meshes[0]);
+  render::UpdateFlagMesh(surface_.cols, surface_.rows, surface_.x.data(), surface_.y.data(),
+                         surface_.z.data(), &scene_.meshes[0]);
   render::RenderOptions options;
   options.mode = input.shading;
   options.threads = threads;

@@ -49,9 +49,9 @@ class FramePainter {
   render::NodeGrid grid_;     ///< the simulated nodes
   render::NodeGrid surface_;  ///< the smooth surface through them, refined for the picture
   render::RenderScene scene_;
-  double pole_height_ = -1, pole_radius_ = -1;  ///< m, what scene_ was built for
+  double pole_height_ = -1, pole_radius_ = -1;                    ///< m, what scene_ was built for
   render::FlagDesign design_ = render::FlagDesign::kNordicCross;  ///< what scene_'s pattern shows
-  DesignFilePtr design_file_;                                      ///< the same
+  DesignFilePtr design_file_;                                     ///< the same
   render::Renderer renderer_;
   render::Framebuffer framebuffer_;
 };

@@ -118,8 +118,9 @@ bool Replayer::AdvanceTo(int64_t step, const std::string& channel) {
   const int64_t now = session_->simulation().state().step;
   if (step - now > kMaxStepsAhead) {
     report_.log_end = channel + " at step " + std::to_string(step) + ", " + std::to_string(step - now) +
-                      " steps past the replay at step " + std::to_string(now) + " with nothing recorded between " +
-                      "(a sound log has a CHECKPOINT every " + std::to_string(Journal::kCheckpointSteps) +
+                      " steps past the replay at step " + std::to_string(now) +
+                      " with nothing recorded between " + "(a sound log has a CHECKPOINT every " +
+                      std::to_string(Journal::kCheckpointSteps) +
                       " steps): the log is damaged there; replayed up to it";
     return false;
   }

@@ -27,7 +27,8 @@ std::string FollowDesign(const ServiceSettings& before, Scene* scene) {
   for (const std::string& name : render::FlagDesignNames())
     if (name != "image") built_in += (built_in.empty() ? "" : ", ") + name;
   return "design: image shows a person's own image, which comes as a file (flagctl design FILE); "
-         "by name, allowed: " + built_in;
+         "by name, allowed: " +
+         built_in;
 }
 
 /// The scene as a playing timeline starts it: its controls at its position applied.
@@ -356,7 +357,8 @@ std::string Session::ApplyTimeline(const TimelineEdit& edit) {
   scene_.timeline = std::move(next);
   substeps_segment_ = kNoSegment;
   // Scrubbing a paused timeline previews it: what the keys set where it now stands.
-  if (edit.operation == TimelineEdit::kSeek && !scene_.timeline.playing() && !scene_.timeline.keys().empty()) {
+  if (edit.operation == TimelineEdit::kSeek && !scene_.timeline.playing() &&
+      !scene_.timeline.keys().empty()) {
     ApplyTimelineControls();
   }
   return "";

@@ -43,7 +43,7 @@ std::vector<uint8_t> PngClaiming(uint32_t width, uint32_t height) {
 
 TEST(DesignImage, APngIsDecodedWithItsAlpha) {
   std::vector<uint8_t> rgba = SolidRgba(3, 2, 200, 10, 20);
-  rgba[3] = 0;      // the first pixel transparent
+  rgba[3] = 0;        // the first pixel transparent
   rgba[4 + 3] = 128;  // the second half
   const std::vector<uint8_t> png = PngBytes(3, 2, rgba);
   ImageHeader header;

@@ -13,7 +13,8 @@
 namespace flagsim::testing {
 
 /// width x height pixels of one RGBA colour.
-inline std::vector<uint8_t> SolidRgba(int width, int height, uint8_t r, uint8_t g, uint8_t b, uint8_t a = 255) {
+inline std::vector<uint8_t> SolidRgba(int width, int height, uint8_t r, uint8_t g, uint8_t b,
+                                      uint8_t a = 255) {
   std::vector<uint8_t> rgba(size_t(width) * height * 4);
   for (size_t i = 0; i < rgba.size(); i += 4) {
     rgba[i] = r;

@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "flagsim/design_piece_t.hpp"
 #include "flagsim/ack_t.hpp"
 #include "flagsim/applied_command_t.hpp"
 #include "flagsim/checkpoint_t.hpp"
+#include "flagsim/design_piece_t.hpp"
 #include "messages/checked_decode.hpp"
 #include "messages/utime.hpp"
 #include "server/service/checkpoint_codec.hpp"

@@ -66,7 +66,7 @@ class CommandServer {
   ServerPresence presence_;
   Journal journal_;
   CommandIntake intake_;
-  Session replayed_;  ///< steps with the session, taking only what APPLIED says
+  Session replayed_;       ///< steps with the session, taking only what APPLIED says
   DesignLibrary designs_;  ///< the design files published on DESIGN_FILE, for the replay
 };
 

@@ -79,10 +79,9 @@ Bytes ReadFile(const fs::path& path) {
 /// The server's targets: each command of the session alone and all in order (the session
 /// stepping after each), another server's STATUS, and commands the session did not send.
 void CommandSeeds(const std::vector<LogEvent>& events, const Channels& channels) {
-  const std::map<std::string, uint8_t> selector = {{channels.wind, 0},    {channels.param, 1},
-                                                   {channels.camera, 2},  {channels.keyframe, 3},
-                                                   {channels.refresh, 4}, {channels.status, 5},
-                                                   {channels.time, 6},    {channels.design, 7}};
+  const std::map<std::string, uint8_t> selector = {
+      {channels.wind, 0},    {channels.param, 1},  {channels.camera, 2}, {channels.keyframe, 3},
+      {channels.refresh, 4}, {channels.status, 5}, {channels.time, 6},   {channels.design, 7}};
   std::vector<Bytes> in_order, signed_in_order;
   std::map<std::string, int> count;
   for (const LogEvent& event : events) {

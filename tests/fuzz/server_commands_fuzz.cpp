@@ -26,8 +26,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Bus bus("memq://");
   const Channels channels;
   fuzz::CommandServer server(bus, channels);
-  const std::string* const targets[] = {&channels.wind,    &channels.param,  &channels.camera, &channels.keyframe,
-                                        &channels.refresh, &channels.status, &channels.time,     &channels.design};
+  const std::string* const targets[] = {&channels.wind,     &channels.param,   &channels.camera,
+                                        &channels.keyframe, &channels.refresh, &channels.status,
+                                        &channels.time,     &channels.design};
   fuzz::Records records(data, size);
   fuzz::Record record;
   while (records.Next(&record)) {

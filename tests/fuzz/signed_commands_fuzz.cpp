@@ -111,8 +111,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const Channels channels;
   fuzz::CommandServer server(bus, channels, {Keys()[0], Keys()[1]});
   // The selectors of server_commands (make_corpus.cpp); its STATUS slot is a REFRESH here.
-  const std::string* const targets[] = {&channels.wind,    &channels.param,   &channels.camera, &channels.keyframe,
-                                        &channels.refresh, &channels.refresh, &channels.time,     &channels.design};
+  const std::string* const targets[] = {&channels.wind,     &channels.param,   &channels.camera,
+                                        &channels.keyframe, &channels.refresh, &channels.refresh,
+                                        &channels.time,     &channels.design};
   std::string last_channel;
   std::vector<uint8_t> last_sent;
   fuzz::Records records(data, size);

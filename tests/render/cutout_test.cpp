@@ -31,7 +31,8 @@ ScreenVertex At(float x, float y, float z, float u, float v) {
 /// The whole image as two triangles at depth z, of `material`, (u, v) from (0, 0) to (1, 1).
 std::vector<TriangleSetup> Square(float z, int material, const SamplePattern& pattern) {
   const float s = float(kSize);
-  const ScreenVertex corners[4] = {At(0, 0, z, 0, 0), At(s, 0, z, 1, 0), At(s, s, z, 1, 1), At(0, s, z, 0, 1)};
+  const ScreenVertex corners[4] = {At(0, 0, z, 0, 0), At(s, 0, z, 1, 0), At(s, s, z, 1, 1),
+                                   At(0, s, z, 0, 1)};
   std::vector<TriangleSetup> triangles;
   for (const auto& [a, b, c] : {std::array{0, 1, 2}, std::array{0, 2, 3}}) {
     TriangleSetup t;

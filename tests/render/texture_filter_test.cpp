@@ -62,7 +62,9 @@ TEST(TextureFilter, BilinearIsExactAtTexelCentresAndLinearBetween) {
 
 TEST(TextureFilter, EachLevelIsTheMeanOfTheOneAbove) {
   FilteredTexture filtered;  // a 4 x 4 checker of 0 and 200: of their light, not of their bytes
-  filtered.Assign(Filled(4, 4, [](int x, int y) { return std::array<uint8_t, 3>{uint8_t((x + y) % 2 ? 200 : 0), 0, 0}; }));
+  filtered.Assign(Filled(4, 4, [](int x, int y) {
+    return std::array<uint8_t, 3>{uint8_t((x + y) % 2 ? 200 : 0), 0, 0};
+  }));
   ASSERT_EQ(filtered.levels().size(), 3u);
   const uint64_t half = (kSrgbDecode[200] + 1) / 2;  // (0 + 200's light + 1) / 2, rounded as the levels are
   for (const uint64_t texel : filtered.levels()[1].texels) EXPECT_EQ(texel & 0xffff, half);
@@ -75,7 +77,7 @@ TEST(TextureFilter, EachLevelIsTheMeanOfTheOneAbove) {
 TEST(TextureFilter, TheLevelOfDetailFollowsTexelsPerPixel) {
   FilteredTexture filtered;
   filtered.Assign(Filled(64, 32, [](int, int) { return std::array<uint8_t, 3>{0, 0, 0}; }));
-  const float texel_area = 1.0f / (64 * 32);  // (u, v) area of one texel
+  const float texel_area = 1.0f / (64 * 32);             // (u, v) area of one texel
   EXPECT_EQ(filtered.LevelOfDetail(texel_area / 9), 0);  // magnified: the full-size level
   EXPECT_NEAR(filtered.LevelOfDetail(texel_area), 0, 1e-6);
   EXPECT_NEAR(filtered.LevelOfDetail(4 * texel_area), 1, 1e-6);  // 2 texels per pixel along each side

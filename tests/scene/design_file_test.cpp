@@ -18,7 +18,8 @@ namespace {
 using testing::PngBytes;
 using testing::SolidRgba;
 
-DesignFilePtr Made(int width, int height, const std::vector<uint8_t>& rgba, const std::string& name = "f.png") {
+DesignFilePtr Made(int width, int height, const std::vector<uint8_t>& rgba,
+                   const std::string& name = "f.png") {
   DesignFilePtr file;
   const std::string problem = MakeDesignFile(name, PngBytes(width, height, rgba), &file);
   EXPECT_EQ(problem, "");
@@ -99,7 +100,8 @@ TEST(DesignFile, ANameIsAFilesNameNotAPath) {
 
 class DesignInSceneFile : public ::testing::Test {
  protected:
-  DesignInSceneFile() : folder_(std::filesystem::temp_directory_path() / ("flagsim_design_" + std::to_string(getpid()))) {
+  DesignInSceneFile()
+      : folder_(std::filesystem::temp_directory_path() / ("flagsim_design_" + std::to_string(getpid()))) {
     std::filesystem::create_directories(folder_ / "art");
     const std::vector<uint8_t> png = PngBytes(40, 10, SolidRgba(40, 10, 200, 0, 0));
     std::ofstream(folder_ / "art" / "long.png", std::ios::binary)
@@ -137,9 +139,10 @@ TEST_F(DesignInSceneFile, AMissingOrBadImageIsAClearError) {
     FAIL() << "no error";
   } catch (const SceneError& error) {
     const std::string what = error.what();
-    EXPECT_NE(what.find("design: 'art/none.png' is neither a built-in design (nordic_cross, tricolour, checker) "
-                        "nor an image file: cannot read"),
-              std::string::npos)
+    EXPECT_NE(
+        what.find("design: 'art/none.png' is neither a built-in design (nordic_cross, tricolour, checker) "
+                  "nor an image file: cannot read"),
+        std::string::npos)
         << what;
   }
   std::ofstream(folder_ / "art" / "bad.png") << "not a picture";

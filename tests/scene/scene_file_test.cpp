@@ -86,12 +86,15 @@ void ExpectError(const std::string& error, const std::string& expected) {
 }
 
 TEST(SceneFile, ADesignIsChosenByNameAtTheTopLevel) {
-  EXPECT_EQ(ParseScene("design = \"tricolour\"\n", "test.toml").service.design, render::FlagDesign::kTricolour);
+  EXPECT_EQ(ParseScene("design = \"tricolour\"\n", "test.toml").service.design,
+            render::FlagDesign::kTricolour);
   EXPECT_EQ(ParseScene("name = \"x\"\n", "test.toml").service.design, render::FlagDesign::kNordicCross);
-  EXPECT_EQ(ErrorOf("design = \"union_jack\"\n"),
-            "test.toml:1: design: 'union_jack' is neither a built-in design (nordic_cross, tricolour, checker) nor "
-            "an image file: cannot read union_jack: No such file or directory");
-  EXPECT_EQ(ErrorOf("design = 3\n"), "test.toml:1: design must be a string: a built-in design's name or an image's path");
+  EXPECT_EQ(
+      ErrorOf("design = \"union_jack\"\n"),
+      "test.toml:1: design: 'union_jack' is neither a built-in design (nordic_cross, tricolour, checker) nor "
+      "an image file: cannot read union_jack: No such file or directory");
+  EXPECT_EQ(ErrorOf("design = 3\n"),
+            "test.toml:1: design must be a string: a built-in design's name or an image's path");
   ExpectError(ErrorOf("design = \"image\"\n"), "cannot read image");
 }
 

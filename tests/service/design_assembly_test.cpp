@@ -59,7 +59,8 @@ TEST(DesignAssembly, ADamagedPieceFailsTheDigestAndTheFileIsSentAgain) {
   assembly.Add(pieces[2]);
   const DesignAssembly::Outcome outcome = assembly.Add(pieces[3]);
   EXPECT_FALSE(outcome.whole);
-  EXPECT_NE(outcome.problem.find("noise.png: the whole file's SHA-256 is "), std::string::npos) << outcome.problem;
+  EXPECT_NE(outcome.problem.find("noise.png: the whole file's SHA-256 is "), std::string::npos)
+      << outcome.problem;
   EXPECT_NE(outcome.problem.find("send the file again"), std::string::npos);
   DesignAssembly::Outcome again;
   for (const design_piece_t& piece : pieces) again = assembly.Add(piece);  // from the start
@@ -72,16 +73,17 @@ TEST(DesignAssembly, BadPiecesAreRefusedWithTheirReason) {
   const auto problem = [](design_piece_t piece) { return DesignAssembly().Add(piece).problem; };
   design_piece_t piece = good;
   piece.offset = 1000;
-  EXPECT_EQ(problem(piece), "offset: 1000; allowed multiples of 49152 below total_bytes " +
-                                std::to_string(bytes.size()));
+  EXPECT_EQ(problem(piece),
+            "offset: 1000; allowed multiples of 49152 below total_bytes " + std::to_string(bytes.size()));
   piece = good;
   piece.num_bytes = 10;
   piece.data.resize(10);
-  EXPECT_EQ(problem(piece), "num_bytes: 10; the piece at offset 49152 of a file of " + std::to_string(bytes.size()) +
-                                " bytes holds 49152");
+  EXPECT_EQ(problem(piece), "num_bytes: 10; the piece at offset 49152 of a file of " +
+                                std::to_string(bytes.size()) + " bytes holds 49152");
   piece = good;
   piece.total_bytes = 5 << 20;
-  EXPECT_EQ(problem(piece).rfind("total_bytes: 5242880; allowed: a PNG or JPEG file of 1 byte .. 4 MiB", 0), 0u);
+  EXPECT_EQ(problem(piece).rfind("total_bytes: 5242880; allowed: a PNG or JPEG file of 1 byte .. 4 MiB", 0),
+            0u);
   piece = good;
   piece.digest = "XYZ";
   EXPECT_EQ(problem(piece), "digest: allowed the file's SHA-256 as 64 lowercase hex digits");
@@ -92,7 +94,8 @@ TEST(DesignAssembly, BadPiecesAreRefusedWithTheirReason) {
   ASSERT_EQ(assembly.Add(good).problem, "");
   piece = Pieces(bytes)[0];
   piece.name = "other.png";
-  EXPECT_NE(assembly.Add(piece).problem.find("earlier pieces with its digest said noise.png"), std::string::npos);
+  EXPECT_NE(assembly.Add(piece).problem.find("earlier pieces with its digest said noise.png"),
+            std::string::npos);
 }
 
 TEST(DesignAssembly, AFifthFileDropsTheOneTouchedLongestAgo) {

@@ -22,7 +22,8 @@ namespace {
 std::vector<uint8_t> Pennant() {
   std::mt19937 random(5);
   std::vector<uint8_t> rgba(size_t(260) * 130 * 4);
-  for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = (i % 4 == 3) ? ((i / 4) % 260 < 195 ? 255 : 0) : uint8_t(random());
+  for (size_t i = 0; i < rgba.size(); ++i)
+    rgba[i] = (i % 4 == 3) ? ((i / 4) % 260 < 195 ? 255 : 0) : uint8_t(random());
   return testing::PngBytes(260, 130, rgba);
 }
 

@@ -20,15 +20,20 @@ json Part(const std::vector<uint8_t>& file, size_t offset, size_t length, const 
 
 TEST(DecodeBase64, TakesTheStandardsVectorsAndRefusesTheRest) {
   // RFC 4648, section 10
-  for (const auto& [text, plain] : std::vector<std::pair<std::string, std::string>>{
-           {"", ""}, {"Zg==", "f"}, {"Zm8=", "fo"}, {"Zm9v", "foo"}, {"Zm9vYg==", "foob"}, {"Zm9vYmE=", "fooba"},
-           {"Zm9vYmFy", "foobar"}}) {
+  for (const auto& [text, plain] : std::vector<std::pair<std::string, std::string>>{{"", ""},
+                                                                                    {"Zg==", "f"},
+                                                                                    {"Zm8=", "fo"},
+                                                                                    {"Zm9v", "foo"},
+                                                                                    {"Zm9vYg==", "foob"},
+                                                                                    {"Zm9vYmE=", "fooba"},
+                                                                                    {"Zm9vYmFy", "foobar"}}) {
     std::vector<uint8_t> bytes;
     ASSERT_TRUE(DecodeBase64(text, &bytes)) << text;
     EXPECT_EQ(std::string(bytes.begin(), bytes.end()), plain);
   }
   std::vector<uint8_t> bytes;
-  for (const std::string bad : {"Zg=", "Zg=a", "Z===", "Zm9v\n", "Zm-v", "=Zg="}) EXPECT_FALSE(DecodeBase64(bad, &bytes)) << bad;
+  for (const std::string bad : {"Zg=", "Zg=a", "Z===", "Zm9v\n", "Zm-v", "=Zg="})
+    EXPECT_FALSE(DecodeBase64(bad, &bytes)) << bad;
 }
 
 TEST(DesignUploads, ANameAloneIsABuiltInDesign) {
@@ -37,11 +42,13 @@ TEST(DesignUploads, ANameAloneIsABuiltInDesign) {
   EXPECT_EQ(step.problem, "");
   EXPECT_EQ(step.built_in, "checker");
   EXPECT_EQ(uploads.Take(1, json::array()).problem, "the request must be a JSON object");
-  EXPECT_EQ(uploads.Take(1, {{"name", 3}}).problem, "name: required, a built-in design's name or the image file's name");
+  EXPECT_EQ(uploads.Take(1, {{"name", 3}}).problem,
+            "name: required, a built-in design's name or the image file's name");
 }
 
 TEST(DesignUploads, PartsInOrderMakeTheCheckedFile) {
-  const std::vector<uint8_t> file = flagsim::testing::PngBytes(30, 20, flagsim::testing::SolidRgba(30, 20, 1, 2, 3));
+  const std::vector<uint8_t> file =
+      flagsim::testing::PngBytes(30, 20, flagsim::testing::SolidRgba(30, 20, 1, 2, 3));
   DesignUploads uploads;
   DesignUploads::Step step = uploads.Take(7, Part(file, 0, 40));
   EXPECT_EQ(step.problem, "");
@@ -55,7 +62,8 @@ TEST(DesignUploads, PartsInOrderMakeTheCheckedFile) {
 }
 
 TEST(DesignUploads, BadPartsAreRefusedAndTheUploadDropped) {
-  const std::vector<uint8_t> file = flagsim::testing::PngBytes(30, 20, flagsim::testing::SolidRgba(30, 20, 1, 2, 3));
+  const std::vector<uint8_t> file =
+      flagsim::testing::PngBytes(30, 20, flagsim::testing::SolidRgba(30, 20, 1, 2, 3));
   DesignUploads uploads;
   ASSERT_EQ(uploads.Take(1, Part(file, 0, 40)).problem, "");
   EXPECT_EQ(uploads.Take(1, Part(file, 50, 10)).problem,

@@ -446,13 +446,16 @@ TEST_F(GatewayTest, AnImageUploadedInPartsBecomesTheDesign) {
   const std::vector<uint8_t> png = flagsim::testing::PngBytes(120, 40, rgba);
   const size_t half = png.size() / 2;
   const auto part = [&](size_t offset, size_t length) {
-    return json{{"name", "striped.png"}, {"size", png.size()}, {"offset", offset},
+    return json{{"name", "striped.png"},
+                {"size", png.size()},
+                {"offset", offset},
                 {"data", testing::Base64({png.begin() + long(offset), png.begin() + long(offset + length)})}}
         .dump();
   };
   client_.Call(kDesignService, 1, part(0, half));
   ASSERT_TRUE(RunUntil([&] { return client_.responses.count(1) > 0; }));
-  EXPECT_EQ(client_.responses[1]["reason"], "held " + std::to_string(half) + " of " + std::to_string(png.size()) + " bytes");
+  EXPECT_EQ(client_.responses[1]["reason"],
+            "held " + std::to_string(half) + " of " + std::to_string(png.size()) + " bytes");
   client_.Call(kDesignService, 2, part(half, png.size() - half));
   ASSERT_TRUE(RunUntil([&] { return client_.responses.count(2) > 0; }));
   EXPECT_TRUE(client_.responses[2]["accepted"]) << client_.responses[2];

@@ -18,7 +18,8 @@ namespace http = boost::beast::http;
 
 class HttpRoutingTest : public ::testing::Test {
  protected:
-  HttpRoutingTest() : bus_("memq://"), gateway_(bus_, channels_, Options()), context_{gateway_, {}, "1", 0, nullptr, ""} {}
+  HttpRoutingTest()
+      : bus_("memq://"), gateway_(bus_, channels_, Options()), context_{gateway_, {}, "1", 0, nullptr, ""} {}
 
   static GatewayOptions Options() {
     GatewayOptions options;
