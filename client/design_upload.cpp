@@ -1,8 +1,5 @@
 #include "client/design_upload.hpp"
 
-#include <filesystem>
-#include <fstream>
-
 #include "common/design_image.hpp"
 #include "messages/design_pieces.hpp"
 
@@ -11,18 +8,6 @@ namespace flagsim {
 std::string CheckDesignFile(const std::vector<uint8_t>& bytes) {
   RgbaImage image;
   return DecodeDesignImage(bytes.data(), bytes.size(), &image);
-}
-
-std::string ReadDesignFile(const std::string& path, std::vector<uint8_t>* bytes) {
-  std::error_code error;
-  const uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) return "cannot read " + path + ": " + error.message();
-  if (size > kMaxDesignFileBytes)
-    return path + ": the file is " + std::to_string(size) + " bytes; allowed: " + DesignLimits();
-  std::ifstream in(path, std::ios::binary);
-  bytes->resize(size);
-  if (!in.read(reinterpret_cast<char*>(bytes->data()), std::streamsize(size))) return "cannot read " + path;
-  return "";
 }
 
 CommandOutcome SendDesignFile(CommandClient& client, const std::string& channel, const std::string& name,

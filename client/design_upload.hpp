@@ -18,10 +18,6 @@ namespace flagsim {
 /// wrong and the limits; the server checks again all the same.
 std::string CheckDesignFile(const std::vector<uint8_t>& bytes);
 
-/// Reads the file at `path` into `*bytes`, refusing it before reading if over the limit; "" or
-/// what went wrong.
-std::string ReadDesignFile(const std::string& path, std::vector<uint8_t>* bytes);
-
 /// Sends `bytes`, named `name`, piece by piece; stops at the first piece refused or unanswered
 /// and returns that outcome, else the last piece's (accepted: the design is shown from its
 /// step). `progress(bytes sent, total)` after each piece, if given.

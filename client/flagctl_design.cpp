@@ -10,6 +10,7 @@
 #include "client/design_upload.hpp"
 #include "client/flagctl_commands.hpp"
 #include "client/flagctl_link.hpp"
+#include "common/design_image.hpp"
 
 namespace flagsim {
 namespace {

@@ -7,6 +7,8 @@
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 namespace flagsim {
@@ -157,6 +159,18 @@ bool RgbaImage::HasTransparency() const {
     if (rgba[i] != 255) return true;
   }
   return false;
+}
+
+std::string ReadDesignFile(const std::string& path, std::vector<uint8_t>* bytes) {
+  std::error_code error;
+  const uintmax_t size = std::filesystem::file_size(path, error);
+  if (error) return "cannot read " + path + ": " + error.message();
+  if (size > kMaxDesignFileBytes)
+    return path + ": the file is " + std::to_string(size) + " bytes; allowed: " + DesignLimits();
+  std::ifstream in(path, std::ios::binary);
+  bytes->resize(size);
+  if (!in.read(reinterpret_cast<char*>(bytes->data()), std::streamsize(size))) return "cannot read " + path;
+  return "";
 }
 
 std::string Sha256Hex(const uint8_t* data, size_t size) {

@@ -45,6 +45,10 @@ struct RgbaImage {
 /// included), then `*image` is untouched.
 std::string DecodeDesignImage(const uint8_t* data, size_t size, RgbaImage* image);
 
+/// The file at `path` into `*bytes`, refused before it is read if larger than the limit; "" or
+/// what went wrong (naming the path).
+std::string ReadDesignFile(const std::string& path, std::vector<uint8_t>* bytes);
+
 /// The SHA-256 of `size` bytes, as 64 lowercase hex digits: a design file's identity on the wire.
 std::string Sha256Hex(const uint8_t* data, size_t size);
 

@@ -107,49 +107,6 @@ void WriteRecord(const fs::path& directory, int index, const std::vector<std::st
   fs::rename(scratch, path);
 }
 
-// ---- work-precision ---------------------------------------------------------------------------
-
-std::vector<Point> WorkPrecisionPoints(bool quick) {
-  const WorkPrecisionScene scene = LoadWorkPrecisionScene();  // converges the reference, once
-  std::vector<Point> points;
-  for (const sim::IntegratorKind kind : AllIntegrators()) {
-    const std::string name = sim::IntegratorName(kind);
-    if (quick && name != "symplectic_euler" && name != "rk4") continue;
-    const std::vector<int> iteration_counts = TakesIterations(kind)
-                                                  ? std::vector<int>{2, 10, 50}
-                                                  : std::vector<int>{scene.trial.params.solver_iterations};
-    for (const int iterations : iteration_counts) {
-      Trial trial = scene.trial;
-      trial.params.integrator = kind;
-      trial.params.solver_iterations = iterations;
-      for (const double h : StepSweep(trial, quick ? 3 : 7)) {
-        points.push_back({{"integrator", name},
-                          {"iterations", TakesIterations(kind) ? std::to_string(iterations) : "-"},
-                          {"substeps", std::to_string(SubstepsFor(trial, h))},
-                          {"reference_substeps", std::to_string(scene.reference_substeps)}});
-      }
-    }
-  }
-  return points;
-}
-
-/// A work-precision point's row, as WorkPrecision (work_precision.cpp) makes it; `scene` is
-/// loaded for the point's reference once per task.
-std::vector<std::string> WorkPrecisionPointRow(const Point& point, std::optional<WorkPrecisionScene>* scene) {
-  const int reference = std::stoi(Field(point, "reference_substeps"));
-  if (!*scene || (*scene)->reference_substeps != reference) scene->emplace(LoadWorkPrecisionScene(reference));
-  Trial trial = (*scene)->trial;
-  const std::string name = Field(point, "integrator"), iterations = Field(point, "iterations");
-  const auto& names = sim::IntegratorNames();
-  const auto found = std::find(names.begin(), names.end(), name);
-  if (found == names.end()) throw std::runtime_error("no integrator " + name);
-  trial.params.integrator = sim::IntegratorKind(found - names.begin());
-  if (iterations != "-") trial.params.solver_iterations = std::stoi(iterations);
-  const int substeps = std::stoi(Field(point, "substeps"));
-  return WorkPrecisionRow(**scene, name, iterations, trial.horizon / substeps,
-                          RunFixed<double>(trial, substeps), CostPerSimulatedSecond(trial, substeps, 3));
-}
-
 // ---- render -----------------------------------------------------------------------------------
 
 std::vector<std::string> RenderColumns() { return {"scene", "duration_s", "fps", "frames", "frames_sha256"}; }
@@ -186,10 +143,50 @@ std::vector<std::string> ColumnsOf(const std::string& experiment) {
 
 }  // namespace
 
+// ---- work-precision ---------------------------------------------------------------------------
+
+std::vector<Point> WorkPrecisionPoints(const WorkPrecisionScene& scene, bool quick) {
+  std::vector<Point> points;
+  for (const sim::IntegratorKind kind : AllIntegrators()) {
+    const std::string name = sim::IntegratorName(kind);
+    if (quick && name != "symplectic_euler" && name != "rk4") continue;
+    const std::vector<int> iteration_counts = TakesIterations(kind)
+                                                  ? std::vector<int>{2, 10, 50}
+                                                  : std::vector<int>{scene.trial.params.solver_iterations};
+    for (const int iterations : iteration_counts) {
+      Trial trial = scene.trial;
+      trial.params.integrator = kind;
+      trial.params.solver_iterations = iterations;
+      for (const double h : StepSweep(trial, quick ? 3 : 7)) {
+        points.push_back({{"integrator", name},
+                          {"iterations", TakesIterations(kind) ? std::to_string(iterations) : "-"},
+                          {"substeps", std::to_string(SubstepsFor(trial, h))},
+                          {"reference_substeps", std::to_string(scene.reference_substeps)}});
+      }
+    }
+  }
+  return points;
+}
+
+std::vector<std::string> WorkPrecisionPointRow(const Point& point, std::optional<WorkPrecisionScene>* scene) {
+  const int reference = std::stoi(Field(point, "reference_substeps"));
+  if (!*scene || (*scene)->reference_substeps != reference) scene->emplace(LoadWorkPrecisionScene(reference));
+  Trial trial = (*scene)->trial;
+  const std::string name = Field(point, "integrator"), iterations = Field(point, "iterations");
+  const auto& names = sim::IntegratorNames();
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found == names.end()) throw std::runtime_error("no integrator " + name);
+  trial.params.integrator = sim::IntegratorKind(found - names.begin());
+  if (iterations != "-") trial.params.solver_iterations = std::stoi(iterations);
+  const int substeps = std::stoi(Field(point, "substeps"));
+  return WorkPrecisionRow(**scene, name, iterations, trial.horizon / substeps,
+                          RunFixed<double>(trial, substeps), CostPerSimulatedSecond(trial, substeps, 3));
+}
+
 int WritePoints(const std::string& experiment, const PointsOptions& options, const std::string& directory) {
   std::vector<Point> points;
   if (experiment == "work-precision") {
-    points = WorkPrecisionPoints(options.quick);
+    points = WorkPrecisionPoints(LoadWorkPrecisionScene(), options.quick);  // converges the reference, once
   } else if (experiment == "render") {
     for (const std::string& scene : options.scenes) {
       LoadScene(scene);  // a scene that does not load is refused now, not in every task

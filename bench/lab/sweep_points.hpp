@@ -19,8 +19,11 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "bench/lab/work_precision_scene.hpp"
 
 namespace flagsim::lab {
 
@@ -32,6 +35,12 @@ struct PointsOptions {
   double duration = 1;              ///< render: s of simulated time
   double fps = 10;                  ///< render: frames per simulated second
 };
+
+/// The work-precision chart's points on `scene` (work_precision.cpp runs them in turn): each
+/// integrator and its iterations at each step of its sweep; `quick`, two integrators at three.
+std::vector<Point> WorkPrecisionPoints(const WorkPrecisionScene& scene, bool quick);
+/// A work-precision point's row; `*scene` is loaded (again) only for another reference.
+std::vector<std::string> WorkPrecisionPointRow(const Point& point, std::optional<WorkPrecisionScene>* scene);
 
 /// Writes DIR/points.txt for `experiment` (work-precision or render); returns the points' count.
 int WritePoints(const std::string& experiment, const PointsOptions& options, const std::string& directory);

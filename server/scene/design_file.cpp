@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include "common/design_image.hpp"
 #include "server/render/srgb.hpp"
@@ -92,14 +91,9 @@ std::string MakeDesignFile(const std::string& name, std::vector<uint8_t> bytes, 
 }
 
 std::string LoadDesignFile(const std::string& path, DesignFilePtr* file) {
-  std::error_code error;
-  const uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) return "cannot read " + path + ": " + error.message();
-  if (size > kMaxDesignFileBytes)
-    return path + ": the file is " + std::to_string(size) + " bytes; allowed: " + DesignLimits();
-  std::ifstream in(path, std::ios::binary);
-  std::vector<uint8_t> bytes(size);
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))) return "cannot read " + path;
+  std::vector<uint8_t> bytes;
+  const std::string unread = ReadDesignFile(path, &bytes);
+  if (!unread.empty()) return unread;
   const std::string problem =
       MakeDesignFile(std::filesystem::path(path).filename().string(), std::move(bytes), file);
   return problem.empty() ? "" : path + ": " + problem;

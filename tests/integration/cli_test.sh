@@ -37,10 +37,10 @@ expect 2 "--timeout 0 is a usage error" "$flagctl" --timeout 0 status
 contains "--timeout: 0 is out of range; allowed above 0" "  with the bound as typed"
 if [[ $(wc -c <"$work/out") -lt 200 ]]; then pass "  in a short message"; else fail "  a long message" "$work/out"; fi
 expect 2 "flagctl --prefix with a '-' is a usage error" "$flagctl" --prefix my-prefix status
-contains "--prefix: 'my-prefix' is not a channel prefix; allowed 1 .. 53 letters, digits and '_'" \
+contains "--prefix: 'my-prefix' is not a channel prefix; allowed 1 .. 52 letters, digits and '_'" \
   "  that names the prefix and what is allowed"
 expect 2 "an empty flagctl --prefix is a usage error" "$flagctl" --prefix "" status
-contains "--prefix: '' is 0 characters; allowed 1 .. 53" "  that says so"
+contains "--prefix: '' is 0 characters; allowed 1 .. 52" "  that says so"
 expect 2 "flagd --prefix with a space is a usage error" "$flagd" --prefix "A B" --duration 0.01
 contains "--prefix: 'A B' is not a channel prefix" "  that names the prefix"
 expect 2 "serve --listen with a port that is not all digits is a usage error" "$flagctl" --prefix NOBODY_ \
