@@ -91,7 +91,10 @@ recorders=($!)
 on 3 "$flagctl" --key-file "$work/ops.key" --prefix BETA_ record -o "$work/beta.lcmlog" --duration 12 \
   >"$work/record-beta.txt" 2>&1 &
 recorders+=($!)
-sleep 2
+for _ in $(seq 100); do  # until both recorders are writing (at most 20 s)
+  [[ -s $work/alpha.lcmlog && -s $work/beta.lcmlog ]] && break
+  sleep 0.2
+done
 
 steer() { on 5 "$flagctl" --key-file "$work/ops.key" --timeout 10 "$@"; }
 expect 0 "a wind for ALPHA_ from host 5, through the loss" steer --prefix ALPHA_ wind 9 0 2
