@@ -20,7 +20,9 @@ int Serve(const Globals& globals, const gateway::ServeOptions& options) {
   serve.command_timeout = globals.timeout;
   if (!globals.key_file.empty()) serve.signer = CommandSigner(ReadKeyFile(globals.key_file).front());
   serve.video_exporter = [globals](const std::string& log, const std::string& output,
-                                   const std::atomic<bool>& stop) { return ExportLogTo(globals, log, output, stop); };
+                                   const std::atomic<bool>& stop) {
+    return ExportLogTo(globals, log, output, stop);
+  };
   return gateway::Serve(bus, channels, serve);
 }
 
@@ -44,17 +46,27 @@ void AddServeCommand(CLI::App& app, Invocation& invocation) {
   serve->add_option(
       "--allow-origin", serve_options.allow_origins,
       "a browser origin allowed besides the gateway's own, e.g. https://app.foxglove.dev; * for any");
-  serve->add_option("--record-dir", serve_options.record_directory,
-                    "where the page's recordings go, each with its MCAP and MP4 once stopped")
+  serve
+      ->add_option("--record-dir", serve_options.record_directory,
+                   "where the page's recordings go, each with its MCAP and MP4 once stopped")
       ->capture_default_str();
   serve->add_option("--tls-cert", serve_options.tls_certificate,
                     "serve HTTPS and WSS with this certificate (PEM, with its chain); with --tls-key");
   serve->add_option("--tls-key", serve_options.tls_key, "the certificate's private key (PEM)");
-  serve->add_option("--tls-dir", serve_options.tls_directory,
-                    "beyond loopback without --tls-cert: where the self-signed certificate is kept (made once)")
+  serve
+      ->add_option(
+          "--tls-dir", serve_options.tls_directory,
+          "beyond loopback without --tls-cert: where the self-signed certificate is kept (made once)")
       ->capture_default_str();
-  serve->add_flag("--plain-http", serve_options.plain_http,
-                  "beyond loopback, serve plain HTTP (behind a proxy that adds TLS): the token crosses in clear");
+  serve->add_flag(
+      "--plain-http", serve_options.plain_http,
+      "beyond loopback, serve plain HTTP (behind a proxy that adds TLS): the token crosses in clear");
+  serve
+      ->add_option(
+          "--servers", serve_options.servers,
+          "serve several servers, each under /PREFIX (/ALPHA_/flag/tiles): these prefixes, or all for "
+          "every server heard on the bus; without it, the one server of --prefix with plain topics")
+      ->delimiter(',');
   serve->footer(
       "Commands from browsers go out as WIND, PARAM, CAMERA, KEYFRAME and REFRESH and are answered with\n"
       "the server's ACK; --timeout is how long the gateway waits for one. The protocol, channels and\n"

@@ -16,23 +16,26 @@ namespace flagsim {
 /// Largest message a reader accepts: a STATE of a 512 x 512 flag is about 3 MB.
 constexpr size_t kMaxStreamMessageBytes = 16 * 1024 * 1024;
 
+/// A bus handler that calls `on_message` for each valid Message and counts the rest in `invalid`.
+template <class Message>
+Bus::Handler DecodingHandler(std::function<void(const Message&)> on_message, int64_t* invalid = nullptr) {
+  return [on_message, invalid](const std::string&, const uint8_t* data, size_t size) {
+    std::string error;
+    const std::optional<Message> message =
+        wire::CheckedDecode<Message>(data, size, kMaxStreamMessageBytes, &error);
+    if (message) {
+      on_message(*message);
+    } else if (invalid != nullptr) {
+      ++*invalid;
+    }
+  };
+}
+
 /// Calls `on_message` for each valid Message on `channel` while Handle() runs; counts the rest.
 template <class Message>
 size_t SubscribeDecoded(Bus& bus, const std::string& channel, std::function<void(const Message&)> on_message,
                         int64_t* invalid = nullptr, int queue_capacity = 30) {
-  return bus.Subscribe(
-      channel,
-      [on_message, invalid](const std::string&, const uint8_t* data, size_t size) {
-        std::string error;
-        const std::optional<Message> message =
-            wire::CheckedDecode<Message>(data, size, kMaxStreamMessageBytes, &error);
-        if (message) {
-          on_message(*message);
-        } else if (invalid != nullptr) {
-          ++*invalid;
-        }
-      },
-      queue_capacity);
+  return bus.Subscribe(channel, DecodingHandler<Message>(std::move(on_message), invalid), queue_capacity);
 }
 
 /// Handles the bus until `done()` or `timeout` seconds pass; true if done.

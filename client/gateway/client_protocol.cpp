@@ -1,8 +1,10 @@
 #include "client/gateway/client_protocol.hpp"
 
+#include <algorithm>
+
 #include "client/gateway/bus_json.hpp"
 #include "client/gateway/foxglove_wire.hpp"
-#include "client/gateway/gateway.hpp"
+#include "client/gateway/gateway_catalog.hpp"
 #include "common/printable_text.hpp"
 
 namespace flagsim::gateway {
@@ -46,17 +48,34 @@ std::string CheckFollowedName(const std::string& name, size_t count) {
 
 }  // namespace
 
-ClientProtocol::ClientProtocol(Gateway& gateway, int client_id) : gateway_(gateway), client_id_(client_id) {}
+ClientProtocol::ClientProtocol(ClientHub& hub, int client_id) : hub_(hub), client_id_(client_id) {}
 
 ClientProtocol::~ClientProtocol() {
-  for (const auto& [channel, subscription] : subscription_of_channel_)
-    gateway_.SubscribersChanged(channel, -1);
+  for (const auto& [channel, subscription] : subscription_of_channel_) hub_.SubscribersChanged(channel, -1);
 }
 
 void ClientProtocol::Start(const std::string& server_name, const std::string& session_id) {
   Push({false, ServerInfoMessage(server_name, session_id), nullptr});
-  Push({false, AdvertiseMessage(), nullptr});
-  Push({false, AdvertiseServicesMessage(), nullptr});
+  Announce(hub_.Advertisements());
+}
+
+void ClientProtocol::Announce(const std::vector<std::string>& advertisements) {
+  for (const std::string& message : advertisements) Push({false, message, nullptr});
+}
+
+void ClientProtocol::Withdraw(const std::vector<uint32_t>& channels, const std::vector<uint32_t>& services) {
+  for (const uint32_t channel : channels) {
+    if (subscription_of_channel_.erase(channel) > 0) hub_.SubscribersChanged(channel, -1);
+    sent_.erase(channel);
+    tiles_.erase(channel);
+    last_frame_sequence_.erase(channel);
+  }
+  for (auto it = client_channels_.begin(); it != client_channels_.end();) {
+    const bool gone = std::find(services.begin(), services.end(), it->second) != services.end();
+    it = gone ? client_channels_.erase(it) : std::next(it);
+  }
+  SendJson({{"op", "unadvertise"}, {"channelIds", channels}});
+  SendJson({{"op", "unadvertiseServices"}, {"serviceIds", services}});
 }
 
 void ClientProtocol::Push(Outgoing message) {
@@ -76,7 +95,7 @@ void ClientProtocol::SendStatus(int level, const std::string& message, const std
 }
 
 void ClientProtocol::Complain(const std::string& message) {
-  ++gateway_.counters().protocol_errors;
+  hub_.CountProtocolError();
   SendStatus(kError, message);
 }
 
@@ -101,8 +120,8 @@ void ClientProtocol::OnText(std::string_view text) {
     std::string problem;
     const json& list = ArrayField(message, op == "getParameters" ? "parameterNames" : "parameters", &problem);
     if (!problem.empty()) return Complain(problem);
-    if (op == "getParameters") return gateway_.GetParameters(client_id_, list, id);
-    return gateway_.SetParameters(client_id_, list, id);
+    if (op == "getParameters") return hub_.GetParameters(client_id_, list, id);
+    return hub_.SetParameters(client_id_, list, id);
   }
   Complain("op '" + op + "' is not supported by this gateway");
 }
@@ -112,15 +131,14 @@ void ClientProtocol::OnBinary(std::string_view bytes) {
   const std::optional<ClientBinary> message = ParseClientBinary(bytes, &error);
   if (!message) return Complain(error);
   if (message->opcode == kServiceCallRequest) {
-    return gateway_.CallService(client_id_, message->service, message->call, message->encoding,
-                                message->payload);
+    return hub_.CallService(client_id_, message->service, message->call, message->encoding, message->payload);
   }
   const auto channel = client_channels_.find(message->channel);
   if (channel == client_channels_.end()) {
     return Complain("Client Message Data on channel " + std::to_string(message->channel) +
                     ", never advertised");
   }
-  gateway_.PublishCommand(client_id_, channel->second, message->payload);
+  hub_.PublishCommand(client_id_, channel->second, message->payload);
 }
 
 void ClientProtocol::Subscribe(const json& message) {
@@ -129,7 +147,8 @@ void ClientProtocol::Subscribe(const json& message) {
     const auto id = subscription.is_object() ? Id(subscription.value("id", json())) : std::nullopt;
     const auto channel =
         subscription.is_object() ? Id(subscription.value("channelId", json())) : std::nullopt;
-    if (!id || !channel || FindChannel(*channel) == nullptr) {
+    const ClientHub::ChannelKind kind = channel ? hub_.KindOf(*channel) : ClientHub::ChannelKind::kNone;
+    if (!id || kind == ClientHub::ChannelKind::kNone) {
       Complain("subscribe: " + JsonText(subscription) +
                " needs an id and a channelId of an advertised channel");
       continue;
@@ -143,9 +162,9 @@ void ClientProtocol::Subscribe(const json& message) {
     }
     subscription_of_channel_[*channel] = *id;
     // The newest message at once (latest wins); ACKs from now on only.
-    sent_[*channel] = *channel == kAcksChannel ? gateway_.feed(*channel).newest() : 0;
-    if (*channel == kTilesChannel) tiles_.Reset();
-    gateway_.SubscribersChanged(*channel, +1);
+    sent_[*channel] = kind == ClientHub::ChannelKind::kAcks ? hub_.Feed(*channel)->newest() : 0;
+    if (kind == ClientHub::ChannelKind::kTiles) tiles_[*channel].Reset();
+    hub_.SubscribersChanged(*channel, +1);
   }
   if (!problem.empty()) Complain(problem);
 }
@@ -156,7 +175,7 @@ void ClientProtocol::Unsubscribe(const json& message) {
     const auto id = Id(value);
     for (auto it = subscription_of_channel_.begin(); id && it != subscription_of_channel_.end(); ++it) {
       if (it->second != *id) continue;
-      gateway_.SubscribersChanged(it->first, -1);
+      hub_.SubscribersChanged(it->first, -1);
       subscription_of_channel_.erase(it);
       break;
     }
@@ -171,18 +190,19 @@ void ClientProtocol::Advertise(const json& message) {
     const auto id = channel.is_object() ? Id(channel.value("id", json())) : std::nullopt;
     const std::string topic = channel.is_object() ? channel.value("topic", "") : "";
     const std::string encoding = channel.is_object() ? channel.value("encoding", "") : "";
-    const ServiceInfo* service = ServiceForTopic(topic);
-    if (!id || service == nullptr || encoding != "json") {
-      Complain("advertise: '" + topic +
-               "' in json is not a topic to publish on; allowed /flag/wind, /flag/set, /flag/camera, "
-               "/flag/keyframe, /flag/refresh with encoding json");
+    const std::optional<uint32_t> service = hub_.ServiceForTopic(topic);
+    if (!id || !service || encoding != "json") {
+      Complain("advertise: '" + PrintableText(topic) +
+               "' in json is not a topic to publish on; allowed a command service's name (/flag/wind, "
+               "/flag/set, /flag/camera, /flag/keyframe, /flag/refresh, /flag/time, /flag/design; "
+               "/PREFIX/flag/wind ... on a gateway of several servers) with encoding json");
       continue;
     }
     if (client_channels_.size() >= kMaxClientChannels && client_channels_.count(*id) == 0) {
       Complain("advertise: at most " + std::to_string(kMaxClientChannels) + " client channels");
       continue;
     }
-    client_channels_[*id] = service->id;
+    client_channels_[*id] = *service;
   }
   if (!problem.empty()) Complain(problem);
 }
@@ -261,26 +281,31 @@ std::optional<Outgoing> ClientProtocol::NextData() {
 }
 
 std::optional<Outgoing> ClientProtocol::NextOn(uint32_t channel, uint32_t subscription) {
-  if (channel == kTilesChannel) {
-    const std::shared_ptr<const MirroredFrame> frame = gateway_.frame();
-    if (!frame) return std::nullopt;
-    const uint64_t previous = last_frame_sequence_;
-    std::shared_ptr<const std::string> update = TileUpdateFor(*frame, &tiles_);
-    if (!update) return std::nullopt;
-    last_frame_sequence_ = frame->sequence;
-    if (previous > 0 && frame->sequence > previous + 1)
-      counters_.frames_skipped += frame->sequence - previous - 1;
-    ++counters_.frames_sent;
-    return Outgoing{true, MessageDataHead(subscription, uint64_t(std::max<int64_t>(frame->utime, 0)) * 1000),
-                    std::move(update)};
-  }
-  ChannelFeed& feed = gateway_.feed(channel);
-  while (const FeedMessage* message = feed.Next(sent_[channel])) {
+  if (hub_.KindOf(channel) == ClientHub::ChannelKind::kTiles) return NextTiles(channel, subscription);
+  ChannelFeed* feed = hub_.Feed(channel);
+  if (feed == nullptr) return std::nullopt;
+  while (const FeedMessage* message = feed->Next(sent_[channel])) {
     sent_[channel] = message->number;
     if (message->payload->empty()) continue;  // nothing to say (a state that made no scene)
     return Outgoing{true, MessageDataHead(subscription, message->timestamp_ns), message->payload};
   }
   return std::nullopt;
+}
+
+// The tiles that take this client from the frame it has to the newest one.
+std::optional<Outgoing> ClientProtocol::NextTiles(uint32_t channel, uint32_t subscription) {
+  const std::shared_ptr<const MirroredFrame> frame = hub_.Frame(channel);
+  if (!frame) return std::nullopt;
+  uint64_t& last_sequence = last_frame_sequence_[channel];
+  const uint64_t previous = last_sequence;
+  std::shared_ptr<const std::string> update = TileUpdateFor(*frame, &tiles_[channel]);
+  if (!update) return std::nullopt;
+  last_sequence = frame->sequence;
+  if (previous > 0 && frame->sequence > previous + 1)
+    counters_.frames_skipped += frame->sequence - previous - 1;
+  ++counters_.frames_sent;
+  return Outgoing{true, MessageDataHead(subscription, uint64_t(std::max<int64_t>(frame->utime, 0)) * 1000),
+                  std::move(update)};
 }
 
 }  // namespace flagsim::gateway

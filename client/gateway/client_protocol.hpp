@@ -18,13 +18,12 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "client/gateway/client_hub.hpp"
 #include "client/gateway/frame_mirror.hpp"
-#include "client/gateway/gateway_catalog.hpp"
 
 namespace flagsim::gateway {
-
-class Gateway;
 
 /// One WebSocket message to write: `head` (small, this client's own) then `body` (shared).
 struct Outgoing {
@@ -48,13 +47,13 @@ class ClientProtocol {
   static constexpr size_t kMaxFollowedParameters = 64;   ///< names a client follows (the table has fewer)
   static constexpr size_t kMaxParameterNameLength = 64;  ///< characters of a followed name
 
-  ClientProtocol(Gateway& gateway, int client_id);
+  ClientProtocol(ClientHub& hub, int client_id);
   /// Tells the gateway its subscriptions are gone (it keeps images only while someone watches).
   ~ClientProtocol();
   ClientProtocol(const ClientProtocol&) = delete;
   ClientProtocol& operator=(const ClientProtocol&) = delete;
 
-  /// The greeting: serverInfo, advertise, advertiseServices.
+  /// The greeting: serverInfo, then the hub's advertisements.
   void Start(const std::string& server_name, const std::string& session_id);
   void OnText(std::string_view text);
   void OnBinary(std::string_view bytes);
@@ -68,8 +67,13 @@ class ClientProtocol {
   void SendStatus(int level, const std::string& message, const std::string& id = "");
   /// parameterValues for the parameters among `values` ([{name, value}]) this client follows.
   void OnParametersChanged(const nlohmann::json& values);
-  /// The next tile update is a keyframe (after /flag/refresh).
-  void ResetTiles() { tiles_.Reset(); }
+  /// The next tile update on `tiles_channel` is a keyframe (after /flag/refresh).
+  void ResetTiles(uint32_t tiles_channel) { tiles_[tiles_channel].Reset(); }
+  /// A server that came: its advertisements.
+  void Announce(const std::vector<std::string>& advertisements);
+  /// A server that went: unadvertises its channels and services, and forgets this client's
+  /// subscriptions to them and the topics it advertised to publish on them.
+  void Withdraw(const std::vector<uint32_t>& channels, const std::vector<uint32_t>& services);
 
   bool overflowed() const { return overflowed_; }
   int id() const { return client_id_; }
@@ -88,8 +92,9 @@ class ClientProtocol {
   void Push(Outgoing message);
   std::optional<Outgoing> NextData();
   std::optional<Outgoing> NextOn(uint32_t channel, uint32_t subscription);
+  std::optional<Outgoing> NextTiles(uint32_t channel, uint32_t subscription);
 
-  Gateway& gateway_;
+  ClientHub& hub_;
   int client_id_;
   std::deque<Outgoing> control_;
   size_t control_bytes_ = 0;
@@ -97,9 +102,9 @@ class ClientProtocol {
   std::map<uint32_t, uint32_t> subscription_of_channel_;  ///< channel id -> the client's subscription id
   std::map<uint32_t, uint64_t> sent_;                     ///< channel id -> feed number last sent
   uint32_t round_robin_ = 0;                              ///< the channel served last
-  ClientTiles tiles_;
-  uint64_t last_frame_sequence_ = 0;
-  std::map<uint32_t, uint32_t> client_channels_;  ///< the client's channel id -> service id (topic)
+  std::map<uint32_t, ClientTiles> tiles_;                 ///< tiles channel id -> what this client has
+  std::map<uint32_t, uint64_t> last_frame_sequence_;      ///< tiles channel id -> the frame last sent
+  std::map<uint32_t, uint32_t> client_channels_;          ///< the client's channel id -> service id (topic)
   bool follows_all_parameters_ = false;
   std::set<std::string> followed_parameters_;
   ClientCounters counters_;

@@ -1,24 +1,29 @@
 #include "client/gateway/gateway.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
+#include <variant>
 
 #include "client/gateway/bus_json.hpp"
-#include "client/gateway/command_requests.hpp"
-#include "client/gateway/compressed_image.hpp"
 #include "client/gateway/foxglove_wire.hpp"
+#include "client/gateway/gateway_parameters.hpp"
 #include "client/gateway/mcap_export.hpp"
 #include "client/gateway/process_usage.hpp"
-#include "client/gateway/scene_update.hpp"
+#include "client/gateway/recording_service.hpp"
 #include "client/stream_reader.hpp"
 #include "common/design_image.hpp"
-#include "flagsim/refresh_request_t.hpp"
+#include "common/printable_text.hpp"
+#include "messages/checked_decode.hpp"
 #include "messages/design_pieces.hpp"
 
 namespace flagsim::gateway {
 namespace {
 
 using nlohmann::json;
+
+constexpr char kStatusName[] = "STATUS";
 
 /// What a finished recording becomes: MCAP, made here, and a video where an exporter is given.
 std::vector<RecordingExports::Format> ExportFormats(const Channels& channels,
@@ -48,149 +53,169 @@ json CommandResultJson(const CommandOutcome& outcome, const std::string& channel
       {"sequence", sequence}};
 }
 
-/// {name: value} of the parameters whose values differ between `before` and `after`.
-json ChangedValues(const std::optional<params_t>& before, const params_t& after) {
-  std::map<std::string, json> old;
-  if (before) {
-    for (const parameter_t& p : before->parameters) old[p.name] = ParameterValue(p);
-  }
-  json changed = json::array();
-  for (const parameter_t& p : after.parameters) {
-    const json value = ParameterValue(p);
-    const auto found = old.find(p.name);
-    if (found == old.end() || found->second != value) changed.push_back({{"name", p.name}, {"value", value}});
-  }
-  return changed;
+std::string AdvertiseText(const json& channels) {
+  return json{{"op", "advertise"}, {"channels", channels}}.dump();
+}
+
+std::string AdvertiseServicesText(const json& services) {
+  return json{{"op", "advertiseServices"}, {"services", services}}.dump();
 }
 
 }  // namespace
 
-Gateway::Gateway(Bus& bus, const Channels& channels, GatewayOptions options)
+ServerSelection ServerSelection::One(const std::string& prefix) { return {false, {prefix}}; }
+
+ServerSelection ServerSelection::Many(std::vector<std::string> prefixes) {
+  return {true, std::move(prefixes)};
+}
+
+// One server: its link now, in slot 0, offered from the start, STATUS on its own channel. Many:
+// STATUS on every channel that ends so, each a server found (OnStatus).
+Gateway::Gateway(Bus& bus, ServerSelection servers, GatewayOptions options)
     : bus_(bus),
-      channels_(channels),
+      selection_(std::move(servers)),
       options_(std::move(options)),
       relay_(bus, NewGatewayClientId(), options_.command_timeout, options_.signer),
-      recorder_(bus, channels, options_.record_directory, ExportFormats(channels, options_.video_exporter)) {
-  feeds_[kAcksChannel] = ChannelFeed(kAcksKept);
+      subscriptions_(bus) {
   started_ = status_window_start_ = next_status_ = options_.clock();
-  SubscribeBus();
-  RequestKeyframe();  // the mirror fills within a frame, not at the next periodic keyframe
+  const std::string channel = selection_.many ? "[A-Za-z0-9_]+" + std::string(kStatusName)
+                                              : Channels(selection_.prefixes.at(0)).status;
+  subscriptions_.Subscribe(channel, [this](const std::string& name, const uint8_t* data, size_t size) {
+    std::string error;
+    const std::optional<status_t> status =
+        wire::CheckedDecode<status_t>(data, size, kMaxStreamMessageBytes, &error);
+    if (status) OnStatus(name, *status);
+  });
+  if (!selection_.many) Offer(*LinkFor(selection_.prefixes.at(0)));
 }
 
-// Every subscription decodes with its lengths checked; garbage is dropped and counted, never
-// trusted (a count that grows says, for one, that flagd was built from other message types).
-void Gateway::SubscribeBus() {
-  int64_t* dropped = &counters_.bus_undecodable;
-  SubscribeDecoded<tile_t>(
-      bus_, channels_.tile, [this](const tile_t& tile) { mirror_.AddTile(tile); }, dropped, 10000);
-  SubscribeDecoded<frame_t>(
-      bus_, channels_.frame, [this](const frame_t& frame) { OnFrame(frame); }, dropped, 1000);
-  SubscribeDecoded<state_t>(
-      bus_, channels_.state,
-      [this](const state_t& message) {
-        NoteServer(message.server_id);
-        const auto state = std::make_shared<const state_t>(message);
-        feeds_[kStateChannel].PublishLazily(Nanoseconds(state->utime),
-                                            [state] { return JsonText(StateSummaryJson(*state)); });
-        feeds_[kSceneChannel].PublishLazily(Nanoseconds(state->utime),
-                                            [state] { return SceneUpdateJson(*state); });
-        WakeAll();
-      },
-      dropped, 200);
-  SubscribeDecoded<status_t>(
-      bus_, channels_.status,
-      [this](const status_t& status) {
-        NoteServer(status.server_id);
-        Publish(kStatusChannel, status.utime, JsonText(StatusJson(status)));
-      },
-      dropped);
-  SubscribeDecoded<timeline_t>(
-      bus_, channels_.timeline,
-      [this](const timeline_t& timeline) {
-        Publish(kTimelineChannel, timeline.utime, JsonText(TimelineJson(timeline)));
-      },
-      dropped);
-  SubscribeDecoded<params_t>(
-      bus_, channels_.params, [this](const params_t& params) { OnParams(params); }, dropped);
-  SubscribeDecoded<ack_t>(
-      bus_, channels_.ack, [this](const ack_t& ack) { OnAck(ack); }, dropped, 1000);
+void Gateway::OnStatus(const std::string& channel, const status_t& status) {
+  ServerLink* link = LinkFor(channel.substr(0, channel.size() - std::strlen(kStatusName)));
+  if (link == nullptr) return;
+  link->OnStatus(status);
+  if (offered_.count(link->slot()) == 0) Offer(*link);
 }
 
-void Gateway::Publish(uint32_t channel, int64_t utime, std::string payload) {
-  feeds_[channel].Publish(Nanoseconds(utime), std::move(payload));
-  WakeAll();
-}
-
-// manifest => mirror (hash-checked) => camera and, if anyone watches it, the JPEG feed
-void Gateway::OnFrame(const frame_t& manifest) {
-  const FrameMirror::Result result = mirror_.AddManifest(manifest);
-  if (result == FrameMirror::Result::kIncomplete) {
-    ++counters_.incomplete_frames;
-    if (++incomplete_in_a_row_ >= kIncompleteBeforeRefresh) RequestKeyframe();
-    return;
+ServerLink* Gateway::LinkFor(const std::string& prefix) {
+  const auto found = slots_.find(prefix);
+  if (found != slots_.end()) return links_.at(found->second).get();
+  const auto& wanted = selection_.prefixes;
+  if (selection_.many && !wanted.empty() && std::find(wanted.begin(), wanted.end(), prefix) == wanted.end())
+    return nullptr;
+  if (!Channels::CheckPrefix(prefix).empty()) return nullptr;
+  if (links_.size() >= kMaxServers) {
+    ++counters_.servers_ignored;
+    return nullptr;
   }
-  const auto frame = mirror_.latest();
-  if (result != FrameMirror::Result::kComplete || !frame || frame->frame_id != manifest.frame_id) return;
-  incomplete_in_a_row_ = 0;
-  ++counters_.frames_mirrored;
-  const json camera = CameraJson(manifest);
-  if (CameraMoved(camera, &last_camera_))
-    feeds_[kCameraChannel].Publish(Nanoseconds(manifest.utime), JsonText(camera));
-  if (frame->image) {
-    feeds_[kImageChannel].PublishLazily(Nanoseconds(frame->utime), [frame] {
-      return CompressedImageJson(EncodeJpeg(frame->image->data(), frame->width, frame->height), frame->utime);
-    });
+  const uint32_t slot = selection_.many ? uint32_t(links_.size()) + 1 : 0;
+  const std::string path = selection_.many ? "/" + prefix : "";
+  const std::string stem = selection_.many ? "flagsim-" + prefix : "flagsim";
+  ServerLink::Hooks hooks;
+  hooks.wake = [this] { WakeAll(); };
+  hooks.ack = [this](const ack_t& ack) { relay_.OnAck(ack); };
+  hooks.parameters_changed = [this, path](const json& changed) {
+    const json renamed = RenamedValues(path, changed);
+    for (auto& [id, client] : clients_) client->protocol().OnParametersChanged(renamed);
+  };
+  const auto make_recorder = [this, stem](const Channels& channels) {
+    return std::make_unique<SessionRecorder>(bus_, channels, options_.record_directory,
+                                             ExportFormats(channels, options_.video_exporter), stem);
+  };
+  links_[slot] = std::make_unique<ServerLink>(bus_, prefix, slot, path, relay_, make_recorder, options_.clock,
+                                              std::move(hooks));
+  slots_[prefix] = slot;
+  offers_[slot] = {ServerChannelsJson(slot, path), ServerServicesJson(slot, path)};
+  return links_[slot].get();
+}
+
+ServerLink* Gateway::LiveLink(uint32_t slot) const {
+  if (offered_.count(slot) == 0) return nullptr;
+  return links_.at(slot).get();
+}
+
+const ServerLink* Gateway::server(uint32_t slot) const {
+  const auto found = links_.find(slot);
+  return found == links_.end() ? nullptr : found->second.get();
+}
+
+void Gateway::Offer(ServerLink& link) {
+  offered_.insert(link.slot());
+  const auto& [channels, services] = offers_.at(link.slot());
+  const std::vector<std::string> advertisements = {AdvertiseText(channels), AdvertiseServicesText(services)};
+  for (auto& [id, client] : clients_) client->protocol().Announce(advertisements);
+  PublishServers();
+}
+
+void Gateway::Withdraw(ServerLink& link) {
+  offered_.erase(link.slot());
+  const std::vector<uint32_t> channels = ServerChannelIds(link.slot());
+  const std::vector<uint32_t> services = ServerServiceIds(link.slot());
+  for (auto& [id, client] : clients_) client->protocol().Withdraw(channels, services);
+  PublishServers();
+}
+
+std::vector<std::string> Gateway::Advertisements() const {
+  json channels = json::array(), services = json::array();
+  for (const uint32_t slot : offered_) {
+    const auto& [its_channels, its_services] = offers_.at(slot);
+    channels.insert(channels.end(), its_channels.begin(), its_channels.end());
+    services.insert(services.end(), its_services.begin(), its_services.end());
   }
-  WakeAll();
+  const json own = GatewayChannelsJson();
+  channels.insert(channels.end(), own.begin(), own.end());
+  return {AdvertiseText(channels), AdvertiseServicesText(services)};
 }
 
-// PARAMS => the table's channel, and parameterValues of what changed to the clients following it
-void Gateway::OnParams(const params_t& params) {
-  const json changed = ChangedValues(params_, params);
-  params_ = params;
-  feeds_[kParamsChannel].Publish(Nanoseconds(params.utime), JsonText(ParamsJson(params)));
-  if (!changed.empty()) {
-    for (auto& [id, client] : clients_) client->protocol().OnParametersChanged(changed);
+ClientHub::ChannelKind Gateway::KindOf(uint32_t id) const {
+  if (IsGatewayChannel(id)) return ChannelKind::kFeed;
+  const uint32_t base = BaseOf(id);
+  if (LiveLink(SlotOf(id)) == nullptr || base < 1 || base > kServerChannelCount) return ChannelKind::kNone;
+  if (base == kTilesChannel) return ChannelKind::kTiles;
+  return base == kAcksChannel ? ChannelKind::kAcks : ChannelKind::kFeed;
+}
+
+ChannelFeed* Gateway::Feed(uint32_t id) {
+  if (id == kGatewayStatusChannel) return &status_feed_;
+  if (id == kServersChannel) return &servers_feed_;
+  const ChannelKind kind = KindOf(id);
+  if (kind != ChannelKind::kFeed && kind != ChannelKind::kAcks) return nullptr;
+  return &LiveLink(SlotOf(id))->feed(BaseOf(id));
+}
+
+std::shared_ptr<const MirroredFrame> Gateway::Frame(uint32_t id) const {
+  if (KindOf(id) != ChannelKind::kTiles) return nullptr;
+  return LiveLink(SlotOf(id))->frame();
+}
+
+std::optional<uint32_t> Gateway::ServiceForTopic(std::string_view topic) const {
+  for (const uint32_t slot : offered_) {
+    const std::string& path = links_.at(slot)->path();
+    if (topic.substr(0, path.size()) != path) continue;
+    for (const ServiceInfo& service : AdvertisedServices()) {
+      if (service.id != kRecordService && topic.substr(path.size()) == service.name)
+        return IdIn(slot, service.id);
+    }
   }
-  WakeAll();
+  return std::nullopt;
 }
 
-void Gateway::NoteServer(int64_t server_id) {
-  if (server_id == 0 || server_id == server_id_) return;  // 0: a render's log, no server
-  const bool restarted = server_id_ != 0;
-  server_id_ = server_id;
-  if (!restarted) return;
-  ++counters_.server_restarts;
-  mirror_.ServerRestarted();
-  incomplete_in_a_row_ = 0;
-  last_camera_ = nullptr;
-  RequestKeyframe(true);
-}
-
-void Gateway::OnAck(const ack_t& ack) {
-  feeds_[kAcksChannel].Publish(Nanoseconds(ack.utime), JsonText(AckJson(ack)));
-  relay_.OnAck(ack);
-  WakeAll();
+void Gateway::SubscribersChanged(uint32_t id, int delta) {
+  const auto found = links_.find(SlotOf(id));
+  if (!IsGatewayChannel(id) && found != links_.end()) found->second->SubscribersChanged(BaseOf(id), delta);
 }
 
 // A recording that stopped on its own (a full disk): said on stderr and to every client, beside
 // the record service's answers, which carry it too.
-void Gateway::RecordingEnded(const std::string& why) {
-  std::fprintf(stderr, "flagctl serve: recording stopped: %s\n", why.c_str());
+void Gateway::RecordingEnded(const ServerLink& link, const std::string& why) {
+  const std::string service = link.path() + "/flag/record";
+  std::fprintf(stderr, "flagctl serve: %s: recording stopped: %s\n", service.c_str(), why.c_str());
   for (auto& [id, client] : clients_)
-    client->protocol().SendStatus(ClientProtocol::kError, "/flag/record: " + why);
+    client->protocol().SendStatus(ClientProtocol::kError, service + ": " + why);
   WakeAll();
 }
 
 void Gateway::WakeAll() {
   for (auto& [id, client] : clients_) client->Wake();
-}
-
-void Gateway::RequestKeyframe(bool always) {
-  const double now = options_.clock();
-  if (!always && now - last_refresh_ < kRefreshInterval) return;
-  last_refresh_ = now;
-  relay_.Send(channels_.refresh, refresh_request_t{}, now, [](const CommandOutcome&, int64_t) {});
 }
 
 int Gateway::Attach(GatewayClient* client) {
@@ -210,83 +235,42 @@ ClientProtocol* Gateway::Client(int id) {
   return found == clients_.end() ? nullptr : &found->second->protocol();
 }
 
-void Gateway::SubscribersChanged(uint32_t channel, int delta) {
-  if (channel > kChannelCount) return;
-  subscribers_[channel] += delta;
-  if (channel == kImageChannel) mirror_.KeepImages(subscribers_[channel] > 0);
+bool Gateway::Relay(int client, const ServerLink& link, const std::string& channel, const Command& command,
+                    Reply reply, Fail fail) {
+  int& in_flight = commands_in_flight_[client];
+  if (in_flight >= kMaxCommandsInFlight) {
+    fail("already " + std::to_string(kMaxCommandsInFlight) +
+         " commands waiting for the server's answer; send more once they are answered");
+    return false;
+  }
+  ++in_flight;
+  const std::string name = link.channels().Unprefixed(channel);
+  const auto done = [this, client, name, reply](const CommandOutcome& outcome, int64_t sequence) {
+    if (--commands_in_flight_[client] == 0) commands_in_flight_.erase(client);
+    ClientProtocol* protocol = Client(client);
+    if (protocol == nullptr) return;  // the client left meanwhile
+    reply(*protocol, CommandResultJson(outcome, name, sequence));
+    clients_[client]->Wake();
+  };
+  std::visit([&](const auto& typed) { relay_.Send(channel, typed, options_.clock(), done); }, command);
+  return true;
 }
 
-template <class Command>
-void Gateway::Relay(int client, const std::string& channel, const Command& command,
-                    std::function<void(ClientProtocol&, const json&)> reply) {
-  const std::string name = channels_.Unprefixed(channel);
-  ++commands_in_flight_[client];
-  relay_.Send(channel, command, options_.clock(),
-              [this, client, name, reply](const CommandOutcome& outcome, int64_t sequence) {
-                if (--commands_in_flight_[client] == 0) commands_in_flight_.erase(client);
-                ClientProtocol* protocol = Client(client);
-                if (protocol == nullptr) return;  // the client left meanwhile
-                reply(*protocol, CommandResultJson(outcome, name, sequence));
-                clients_[client]->Wake();
-              });
-}
-
-// request JSON => the service's command => relay => reply(result); fail(why) if it is none
-void Gateway::ServiceRequest(int client, uint32_t service, const json& request,
-                             std::function<void(ClientProtocol&, const json&)> reply,
-                             std::function<void(const std::string&)> fail) {
-  if (commands_in_flight_.count(client) > 0 && commands_in_flight_[client] >= kMaxCommandsInFlight) {
-    return fail("already " + std::to_string(kMaxCommandsInFlight) +
-                " commands waiting for the server's answer; send more once they are answered");
-  }
-  std::string problem;
-  switch (service) {
-    case kWindService: {
-      wind_command_t command{};
-      problem = WindCommandOf(request, &command);
-      if (problem.empty()) Relay(client, channels_.wind, command, reply);
-      break;
-    }
-    case kSetService: {
-      param_command_t command{};
-      problem = SetCommandOf(request, &command);
-      if (problem.empty()) Relay(client, channels_.param, command, reply);
-      break;
-    }
-    case kCameraService: {
-      camera_command_t command{};
-      problem = CameraCommandOf(request, &command);
-      if (problem.empty()) Relay(client, channels_.camera, command, reply);
-      break;
-    }
-    case kKeyframeService: {
-      keyframe_command_t command{};
-      problem = KeyframeCommandOf(request, &command);
-      if (problem.empty()) Relay(client, channels_.keyframe, command, reply);
-      break;
-    }
-    case kTimeService: {
-      time_command_t command{};
-      problem = TimeCommandOf(request, &command);
-      if (problem.empty()) Relay(client, channels_.time, command, reply);
-      break;
-    }
-    case kDesignService:
-      return DesignRequest(client, request, reply, fail);
-    case kRefreshService:
-      Client(client)->ResetTiles();
-      Relay(client, channels_.refresh, refresh_request_t{}, reply);
-      break;
-    default:
-      problem = "service " + std::to_string(service) + " is not one of this gateway's";
-  }
-  if (!problem.empty()) fail(problem);
+// request JSON => the service's command (the table) => relay => reply(result); fail(why) if none
+void Gateway::ServiceRequest(int client, ServerLink& link, uint32_t base, const json& request, Reply reply,
+                             Fail fail) {
+  if (base == kDesignService) return DesignRequest(client, link, request, std::move(reply), std::move(fail));
+  const CommandService* service = FindCommandService(base);
+  if (service == nullptr) return fail("service " + std::to_string(base) + " is not one of this gateway's");
+  Command command;
+  const std::string problem = service->parse(request, &command);
+  if (!problem.empty()) return fail(problem);
+  const bool sent = Relay(client, link, link.channels().*service->channel, command, std::move(reply), fail);
+  if (sent && base == kRefreshService) Client(client)->ResetTiles(IdIn(link.slot(), kTilesChannel));
 }
 
 // {"name"} => PARAM design=NAME; a part of an image => held, or whole => its DESIGN pieces in turn
-void Gateway::DesignRequest(int client, const json& request,
-                            std::function<void(ClientProtocol&, const json&)> reply,
-                            std::function<void(const std::string&)> fail) {
+void Gateway::DesignRequest(int client, ServerLink& link, const json& request, Reply reply, Fail fail) {
   DesignUploads::Step step = uploads_.Take(client, request);
   if (!step.problem.empty()) return fail(step.problem);
   if (!step.built_in.empty()) {
@@ -294,7 +278,8 @@ void Gateway::DesignRequest(int client, const json& request,
     command.names = {"design"};
     command.values = {step.built_in};
     command.num_assignments = 1;
-    return Relay(client, channels_.param, command, reply);
+    Relay(client, link, link.channels().param, command, std::move(reply), std::move(fail));
+    return;
   }
   if (!step.whole) {
     CommandOutcome held;
@@ -303,20 +288,26 @@ void Gateway::DesignRequest(int client, const json& request,
     return reply(*Client(client), CommandResultJson(held, "DESIGN", 0));
   }
   const std::string digest = Sha256Hex(step.bytes.data(), step.bytes.size());
-  RelayPieces(client,
+  RelayPieces(client, link,
               std::make_shared<const std::vector<design_piece_t>>(
                   SplitDesignFile(step.name, digest, step.bytes, relay_.client_id(), 0)),
               0, std::move(reply));
 }
 
-// One piece after another, each on its ACK; the answer to the last (or to one refused) is the reply.
-void Gateway::RelayPieces(int client, std::shared_ptr<const std::vector<design_piece_t>> pieces, size_t index,
-                          std::function<void(ClientProtocol&, const json&)> reply) {
-  Relay(client, channels_.design, (*pieces)[index],
-        [this, client, pieces, index, reply](ClientProtocol& protocol, const json& result) {
-          if (!result.value("accepted", false) || index + 1 == pieces->size()) return reply(protocol, result);
-          RelayPieces(client, pieces, index + 1, reply);
-        });
+// One piece after another, each on its ACK; the answer to the last (or to one refused) is the
+// reply. A link lives as long as the gateway, so the chain may hold it.
+void Gateway::RelayPieces(int client, ServerLink& link,
+                          std::shared_ptr<const std::vector<design_piece_t>> pieces, size_t index,
+                          Reply reply) {
+  const auto next = [this, client, &link, pieces, index, reply](ClientProtocol& protocol,
+                                                                const json& result) {
+    if (!result.value("accepted", false) || index + 1 == pieces->size()) return reply(protocol, result);
+    RelayPieces(client, link, pieces, index + 1, reply);
+  };
+  const auto refused = [this, client, reply](const std::string& why) {
+    if (ClientProtocol* protocol = Client(client)) reply(*protocol, {{"accepted", false}, {"reason", why}});
+  };
+  Relay(client, link, link.channels().design, (*pieces)[index], next, refused);
 }
 
 void Gateway::CallService(int client, uint32_t service, uint32_t call, std::string_view encoding,
@@ -328,115 +319,111 @@ void Gateway::CallService(int client, uint32_t service, uint32_t call, std::stri
           {{"op", "serviceCallFailure"}, {"serviceId", service}, {"callId", call}, {"message", message}});
     }
   };
-  const ServiceInfo* info = FindService(service);
+  ServerLink* link = LiveLink(SlotOf(service));
+  const ServiceInfo* info = FindService(BaseOf(service));
   if (protocol == nullptr) return;
-  if (info == nullptr) return fail("service " + std::to_string(service) + " is not advertised");
+  if (link == nullptr || info == nullptr)
+    return fail("service " + std::to_string(service) + " is not advertised");
   if (encoding != "json")
     return fail("encoding '" + std::string(encoding) + "' is not supported; allowed json");
   const json request = json::parse(payload, nullptr, false);
-  if (request.is_discarded()) return fail(std::string(info->name) + ": the request is not JSON");
+  const std::string name = link->path() + std::string(info->name);
+  if (request.is_discarded()) return fail(name + ": the request is not JSON");
   const auto respond = [service, call](ClientProtocol& p, const json& result) {
     p.SendBinary(ServiceCallResponse(service, call, "json", JsonText(result)));
   };
-  if (service == kRecordService) {
-    const std::string action = request.is_object() ? request.value("action", "") : "";
-    const double now = options_.clock();
-    if (action == "start") {
-      const json state = recorder_.Start(now);
-      // The log starts with a whole frame and a checkpoint (asked again at Tick if none comes).
-      if (recorder_.KeyframeRequestDue(now)) RequestKeyframe(true);
-      return respond(*protocol, state);
-    }
-    if (action == "stop") return respond(*protocol, recorder_.Stop(now));
-    if (action == "status") return respond(*protocol, recorder_.Status(now));
-    return fail("/flag/record: action must be start, stop or status");
-  }
-  ServiceRequest(client, service, request, respond, fail);
+  if (info->id != kRecordService) return ServiceRequest(client, *link, info->id, request, respond, fail);
+  const double now = options_.clock();
+  std::string problem;
+  const std::optional<json> answer = AnswerRecordRequest(link->recorder(), request, now, &problem);
+  if (!answer) return fail(problem);
+  // A log starts with a whole frame and a checkpoint (asked again at Tick if none comes).
+  if (link->recorder().KeyframeRequestDue(now)) link->RequestKeyframe(true);
+  respond(*protocol, *answer);
 }
 
 void Gateway::PublishCommand(int client, uint32_t service, std::string_view payload) {
-  const ServiceInfo* info = FindService(service);
-  const std::string topic(info ? info->name : "?");
+  ServerLink* link = LiveLink(SlotOf(service));
+  const ServiceInfo* info = FindService(BaseOf(service));
+  const std::string topic = link && info ? link->path() + std::string(info->name) : "?";
   const auto warn = [this, client, topic](const std::string& message) {
     if (ClientProtocol* p = Client(client)) p->SendStatus(ClientProtocol::kWarning, topic + ": " + message);
   };
+  if (link == nullptr || info == nullptr) return warn("the server is no longer offered");
   const json request = json::parse(payload, nullptr, false);
   if (request.is_discarded()) return warn("the message is not JSON");
-  // The ACK goes to /flag/acks for everyone; the publisher also hears of a rejection.
+  // The ACK goes to the acks channel for everyone; the publisher also hears of a rejection.
   const auto reply = [topic](ClientProtocol& p, const json& result) {
     if (!result.value("accepted", false)) {
       p.SendStatus(ClientProtocol::kWarning, topic + ": " + result.value("reason", std::string()));
     }
   };
-  ServiceRequest(client, service, request, reply, warn);
+  ServiceRequest(client, *link, info->id, request, reply, warn);
 }
 
 void Gateway::GetParameters(int client, const json& names, const std::string& id) {
   ClientProtocol* protocol = Client(client);
   if (protocol == nullptr) return;
   json values = json::array();
-  if (params_) {
-    for (const json& value : ParameterValues(*params_)) {
-      const bool wanted =
-          names.empty() || std::find(names.begin(), names.end(), value["name"]) != names.end();
-      if (wanted) values.push_back(value);
-    }
+  for (const uint32_t slot : offered_) {
+    const ServerLink& link = *links_.at(slot);
+    if (!link.params()) continue;
+    const json its = ParameterValuesIn(link.path(), *link.params(), names);
+    values.insert(values.end(), its.begin(), its.end());
   }
   json message = {{"op", "parameterValues"}, {"parameters", values}};
   if (!id.empty()) message["id"] = id;
   protocol->SendJson(message);
 }
 
-// parameters [{name, value}] => one PARAM command => after its ACK: a status if it was
-// rejected, then parameterValues with the values in force (from the newest PARAMS, which the
-// server publishes before it answers).
+// parameters [{name, value}] => one PARAM command to the server they belong to => after its
+// ACK: a status if it was rejected, then parameterValues with the values in force (from the
+// newest PARAMS, which the server publishes before it answers).
 void Gateway::SetParameters(int client, const json& parameters, const std::string& id) {
+  std::string problem;
+  ServerLink* link = ParametersServer(parameters, &problem);
   param_command_t command{};
   json names = json::array();
-  std::string problem;
-  for (const json& parameter : parameters) {
-    const auto name = parameter.find("name");
-    const auto value = parameter.find("value");
-    if (!parameter.is_object() || name == parameter.end() || !name->is_string()) {
-      problem = "setParameters: each parameter needs a name";
-      break;
-    }
-    if (value == parameter.end()) {
-      problem = name->get<std::string>() + ": parameters cannot be unset; give a value";
-      break;
-    }
-    const std::string text = ParameterText(name->get<std::string>(), *value, &problem);
-    if (!problem.empty()) break;
-    command.names.push_back(name->get<std::string>());
-    command.values.push_back(text);
-    names.push_back(*name);
-  }
-  command.num_assignments = static_cast<int32_t>(command.names.size());
+  if (link) problem = ParamCommandOf(parameters, link->path(), &command, &names);
   const std::string status_id = "setParameters:" + id;
   const auto answer = [this, client, names, id, status_id](ClientProtocol& p, const json& result) {
-    if (!result.value("accepted", false)) {
+    if (!result.value("accepted", false))
       p.SendStatus(ClientProtocol::kError, result.value("reason", std::string()), status_id);
-    }
     GetParameters(client, names, id);
   };
-  if (problem.empty() && command.num_assignments == 0) problem = "setParameters: no parameters given";
-  if (problem.empty() && commands_in_flight_.count(client) > 0 &&
-      commands_in_flight_[client] >= kMaxCommandsInFlight) {
-    problem =
-        "setParameters: already " + std::to_string(kMaxCommandsInFlight) + " commands waiting for an answer";
+  const auto refuse = [this, client, answer](const std::string& why) {
+    if (ClientProtocol* p = Client(client)) answer(*p, {{"accepted", false}, {"reason", why}});
+  };
+  if (!problem.empty()) return refuse(problem);
+  Relay(client, *link, link->channels().param, command, answer, refuse);
+}
+
+// The single server; of several, the one whose path the first name starts with.
+ServerLink* Gateway::ParametersServer(const json& parameters, std::string* problem) const {
+  if (!selection_.many) return LiveLink(0);
+  const json first = parameters.empty() ? json() : parameters[0];
+  const auto name = first.is_object() ? first.find("name") : first.end();
+  if (name == first.end() || !name->is_string()) {
+    *problem = parameters.empty() ? "setParameters: no parameters given"
+                                  : "setParameters: each parameter needs a name";
+    return nullptr;
   }
-  if (!problem.empty()) {
-    if (ClientProtocol* p = Client(client)) answer(*p, {{"accepted", false}, {"reason", problem}});
-    return;
+  for (const uint32_t slot : offered_) {
+    if (ParameterNameOf(links_.at(slot)->path(), name->get<std::string>())) return links_.at(slot).get();
   }
-  Relay(client, channels_.param, command, answer);
+  *problem = "setParameters: '" + PrintableText(name->get<std::string>()) +
+             "' is no parameter of a server this gateway offers now (/PREFIX/NAME)";
+  return nullptr;
 }
 
 void Gateway::Tick() {
   const double now = options_.clock();
   relay_.Tick(now);
-  if (recorder_.StopIfDone(now)) RecordingEnded(recorder_.last_error());
-  if (recorder_.KeyframeRequestDue(now)) RequestKeyframe(true);
+  for (auto& [slot, link] : links_) {
+    if (link->recorder().StopIfDone(now)) RecordingEnded(*link, link->recorder().last_error());
+    if (link->recorder().KeyframeRequestDue(now)) link->RequestKeyframe(true);
+    if (selection_.many && offered_.count(slot) > 0 && now - link->last_heard() > kSilence) Withdraw(*link);
+  }
   if (now >= next_status_) {
     PublishGatewayStatus(now);
     next_status_ = std::max(next_status_ + 1.0, now);
@@ -444,6 +431,22 @@ void Gateway::Tick() {
 }
 
 double Gateway::NextDue() const { return std::min(relay_.NextDue(), next_status_); }
+
+std::optional<std::string> Gateway::RecordingFile(std::string_view name) const {
+  for (const auto& [slot, link] : links_) {
+    if (auto file = link->recorder().FinishedFile(name)) return file;
+  }
+  return std::nullopt;
+}
+
+void Gateway::PublishServers() {
+  json servers = json::array();
+  for (const auto& [prefix, slot] : slots_) {
+    servers.push_back(links_.at(slot)->Summary(offered_.count(slot) > 0, frames_per_second_[slot]));
+  }
+  servers_feed_.Publish(Nanoseconds(UnixMicros()), JsonText({{"servers", servers}}));
+  WakeAll();
+}
 
 void Gateway::PublishGatewayStatus(double now) {
   const double window = std::max(now - status_window_start_, 1e-3);
@@ -462,6 +465,17 @@ void Gateway::PublishGatewayStatus(double now) {
                           {"queued_bytes", client->protocol().queued_bytes()}});
     counters_at_window_[id] = counters;
   }
+  ServerLinkCounters servers;
+  double frames_per_second = 0;
+  for (const auto& [slot, link] : links_) {
+    const ServerLinkCounters& its = link->counters();
+    servers.incomplete_frames += its.incomplete_frames;
+    servers.server_restarts += its.server_restarts;
+    servers.bus_undecodable += its.bus_undecodable;
+    frames_per_second_[slot] = double(its.frames_mirrored - frames_at_window_[slot]) / window;
+    frames_per_second += frames_per_second_[slot];
+    frames_at_window_[slot] = its.frames_mirrored;
+  }
   const ProcessUsage usage = ReadProcessUsage();
   const json status = {{"uptime", now - started_},
                        {"clients", clients_.size()},
@@ -469,17 +483,19 @@ void Gateway::PublishGatewayStatus(double now) {
                        {"unauthorized", counters_.unauthorized},
                        {"forbidden", counters_.forbidden},
                        {"protocol_errors", counters_.protocol_errors},
-                       {"frames_per_second", double(counters_.frames_mirrored - frames_at_window_) / window},
-                       {"incomplete_frames", counters_.incomplete_frames},
-                       {"server_restarts", counters_.server_restarts},
-                       {"bus_undecodable", counters_.bus_undecodable},
+                       {"servers", offered_.size()},
+                       {"servers_ignored", counters_.servers_ignored},
+                       {"frames_per_second", frames_per_second},
+                       {"incomplete_frames", servers.incomplete_frames},
+                       {"server_restarts", servers.server_restarts},
+                       {"bus_undecodable", servers.bus_undecodable},
                        {"cpu_seconds", usage.cpu_seconds},
                        {"resident_bytes", usage.resident_bytes},
                        {"bytes_per_second", bytes_per_second},
                        {"per_client", per_client}};
-  frames_at_window_ = counters_.frames_mirrored;
   status_window_start_ = now;
-  Publish(kGatewayStatusChannel, UnixMicros(), JsonText(status));
+  status_feed_.Publish(Nanoseconds(UnixMicros()), JsonText(status));
+  PublishServers();
 }
 
 }  // namespace flagsim::gateway

@@ -1,6 +1,6 @@
 #include "client/gateway/gateway_catalog.hpp"
 
-#include <nlohmann/json.hpp>
+#include <map>
 #include <stdexcept>
 
 namespace flagsim::gateway {
@@ -11,10 +11,39 @@ const std::vector<std::pair<std::string_view, std::string_view>>& GatewaySchemas
 namespace {
 using nlohmann::json;
 
-/// A schema as sent: JSON ones without their layout's whitespace, text ones as written.
-std::string CompactSchema(std::string_view stem) {
+/// A schema as sent: JSON ones without their layout's whitespace, text ones as written; each
+/// made once (every client of every server is sent them).
+const std::string& CompactSchema(std::string_view stem) {
+  static std::map<std::string_view, std::string> compact;
+  const auto found = compact.find(stem);
+  if (found != compact.end()) return found->second;
   const json parsed = json::parse(Schema(stem), nullptr, false);
-  return parsed.is_discarded() ? std::string(Schema(stem)) : parsed.dump();
+  return compact[stem] = parsed.is_discarded() ? std::string(Schema(stem)) : parsed.dump();
+}
+
+json ChannelJson(const ChannelInfo& channel, uint32_t id, const std::string& path) {
+  return {{"id", id},
+          {"topic", path + std::string(channel.topic)},
+          {"encoding", channel.encoding},
+          {"schemaName", channel.schema_name},
+          {"schemaEncoding", channel.schema_encoding},
+          {"schema", CompactSchema(channel.schema_file)}};
+}
+
+json ServiceJson(const ServiceInfo& service, uint32_t id, const std::string& path) {
+  const auto definition = [](std::string_view stem) {
+    return json{{"encoding", "json"},
+                {"schemaName", json::parse(Schema(stem)).value("title", std::string(stem))},
+                {"schemaEncoding", "jsonschema"},
+                {"schema", CompactSchema(stem)}};
+  };
+  return {{"id", id},
+          {"name", path + std::string(service.name)},
+          {"type", service.type},
+          {"request", definition(service.request_schema)},
+          {"response", definition(service.response_schema)},
+          {"requestSchema", CompactSchema(service.request_schema)},
+          {"responseSchema", CompactSchema(service.response_schema)}};
 }
 
 }  // namespace
@@ -32,6 +61,7 @@ const std::vector<ChannelInfo>& AdvertisedChannels() {
       {kAcksChannel, "/flag/acks", "json", "flagsim.Ack", "jsonschema", "ack"},
       {kGatewayStatusChannel, "/gateway/status", "json", "flagsim.GatewayStatus", "jsonschema",
        "gateway_status"},
+      {kServersChannel, "/gateway/servers", "json", "flagsim.Servers", "jsonschema", "servers"},
   };
   return channels;
 }
@@ -50,19 +80,12 @@ const std::vector<ServiceInfo>& AdvertisedServices() {
   return services;
 }
 
-const ChannelInfo* FindChannel(uint32_t id) {
-  return id >= 1 && id <= AdvertisedChannels().size() ? &AdvertisedChannels()[id - 1] : nullptr;
+const ChannelInfo* FindChannel(uint32_t base) {
+  return base >= 1 && base <= AdvertisedChannels().size() ? &AdvertisedChannels()[base - 1] : nullptr;
 }
 
-const ServiceInfo* FindService(uint32_t id) {
-  return id >= 1 && id <= AdvertisedServices().size() ? &AdvertisedServices()[id - 1] : nullptr;
-}
-
-const ServiceInfo* ServiceForTopic(std::string_view topic) {
-  for (const ServiceInfo& service : AdvertisedServices()) {
-    if (service.name == topic && service.id != kRecordService) return &service;
-  }
-  return nullptr;
+const ServiceInfo* FindService(uint32_t base) {
+  return base >= 1 && base <= AdvertisedServices().size() ? &AdvertisedServices()[base - 1] : nullptr;
 }
 
 std::string_view Schema(std::string_view stem) {
@@ -70,6 +93,37 @@ std::string_view Schema(std::string_view stem) {
     if (name == stem) return text;
   }
   throw std::out_of_range("no schema " + std::string(stem));
+}
+
+json ServerChannelsJson(uint32_t slot, const std::string& path) {
+  json channels = json::array();
+  for (uint32_t base = 1; base <= kServerChannelCount; ++base)
+    channels.push_back(ChannelJson(*FindChannel(base), IdIn(slot, base), path));
+  return channels;
+}
+
+json ServerServicesJson(uint32_t slot, const std::string& path) {
+  json services = json::array();
+  for (const ServiceInfo& service : AdvertisedServices())
+    services.push_back(ServiceJson(service, IdIn(slot, service.id), path));
+  return services;
+}
+
+json GatewayChannelsJson() {
+  return json::array({ChannelJson(*FindChannel(kGatewayStatusChannel), kGatewayStatusChannel, ""),
+                      ChannelJson(*FindChannel(kServersChannel), kServersChannel, "")});
+}
+
+std::vector<uint32_t> ServerChannelIds(uint32_t slot) {
+  std::vector<uint32_t> ids;
+  for (uint32_t base = 1; base <= kServerChannelCount; ++base) ids.push_back(IdIn(slot, base));
+  return ids;
+}
+
+std::vector<uint32_t> ServerServiceIds(uint32_t slot) {
+  std::vector<uint32_t> ids;
+  for (uint32_t base = 1; base <= kServiceCount; ++base) ids.push_back(IdIn(slot, base));
+  return ids;
 }
 
 std::string ServerInfoMessage(const std::string& name, const std::string& session_id) {
@@ -80,46 +134,6 @@ std::string ServerInfoMessage(const std::string& name, const std::string& sessio
               {"metadata", {{"protocol_notes", "see docs/live-view.md of flagsim"}}},
               {"sessionId", session_id}}
       .dump();
-}
-
-// Both made once: the channels and services never change, and every client connecting is sent them.
-std::string AdvertiseMessage() {
-  static const std::string message = [] {
-    json channels = json::array();
-    for (const ChannelInfo& channel : AdvertisedChannels()) {
-      channels.push_back({{"id", channel.id},
-                          {"topic", channel.topic},
-                          {"encoding", channel.encoding},
-                          {"schemaName", channel.schema_name},
-                          {"schemaEncoding", channel.schema_encoding},
-                          {"schema", CompactSchema(channel.schema_file)}});
-    }
-    return json{{"op", "advertise"}, {"channels", channels}}.dump();
-  }();
-  return message;
-}
-
-std::string AdvertiseServicesMessage() {
-  static const std::string message = [] {
-    json services = json::array();
-    for (const ServiceInfo& service : AdvertisedServices()) {
-      const auto definition = [](std::string_view stem) {
-        return json{{"encoding", "json"},
-                    {"schemaName", json::parse(Schema(stem)).value("title", std::string(stem))},
-                    {"schemaEncoding", "jsonschema"},
-                    {"schema", CompactSchema(stem)}};
-      };
-      services.push_back({{"id", service.id},
-                          {"name", service.name},
-                          {"type", service.type},
-                          {"request", definition(service.request_schema)},
-                          {"response", definition(service.response_schema)},
-                          {"requestSchema", CompactSchema(service.request_schema)},
-                          {"responseSchema", CompactSchema(service.response_schema)}});
-    }
-    return json{{"op", "advertiseServices"}, {"services", services}}.dump();
-  }();
-  return message;
 }
 
 }  // namespace flagsim::gateway

@@ -31,15 +31,17 @@ class McapChannels {
  public:
   explicit McapChannels(McapWriter& writer) : writer_(writer) {
     for (const ChannelInfo& channel : AdvertisedChannels()) {
-      if (channel.encoding != "json" || channel.id == kGatewayStatusChannel) continue;  // the page's own
-      const uint16_t schema = writer.AddSchema(channel.schema_name, channel.schema_encoding, Schema(channel.schema_file));
+      if (channel.encoding != "json" || IsGatewayChannel(channel.id)) continue;  // the gateway's own
+      const uint16_t schema =
+          writer.AddSchema(channel.schema_name, channel.schema_encoding, Schema(channel.schema_file));
       ids_[channel.id] = writer.AddChannel(schema, channel.topic, channel.encoding);
       topics_[channel.id] = std::string(channel.topic);
     }
   }
 
   /// One message on `channel`, recorded at `log_us` and stamped by the server at `utime` (us).
-  void Write(ChannelId channel, int64_t log_us, int64_t utime, std::string_view json, McapExportReport* report) {
+  void Write(ChannelId channel, int64_t log_us, int64_t utime, std::string_view json,
+             McapExportReport* report) {
     writer_.Write(ids_.at(channel), Nanoseconds(log_us), Nanoseconds(utime), json);
     ++report->messages[topics_.at(channel)];
   }
@@ -80,7 +82,8 @@ class SessionConverter {
         out_.Write(kParamsChannel, event.timestamp, params->utime, JsonText(ParamsJson(*params)), report_);
     } else if (channel == channels_.timeline) {
       if (const auto timeline = Decode<timeline_t>(event))
-        out_.Write(kTimelineChannel, event.timestamp, timeline->utime, JsonText(TimelineJson(*timeline)), report_);
+        out_.Write(kTimelineChannel, event.timestamp, timeline->utime, JsonText(TimelineJson(*timeline)),
+                   report_);
     } else if (channel == channels_.ack) {
       if (const auto ack = Decode<ack_t>(event))
         out_.Write(kAcksChannel, event.timestamp, ack->utime, JsonText(AckJson(*ack)), report_);
@@ -104,7 +107,8 @@ class SessionConverter {
     const auto frame = mirror_.latest();
     if (result != FrameMirror::Result::kComplete || !frame || frame->frame_id != manifest.frame_id) return;
     const nlohmann::json camera = CameraJson(manifest);
-    if (CameraMoved(camera, &last_camera_)) out_.Write(kCameraChannel, log_us, manifest.utime, JsonText(camera), report_);
+    if (CameraMoved(camera, &last_camera_))
+      out_.Write(kCameraChannel, log_us, manifest.utime, JsonText(camera), report_);
     const std::string jpeg = EncodeJpeg(frame->image->data(), frame->width, frame->height);
     out_.Write(kImageChannel, log_us, frame->utime, CompressedImageJson(jpeg, frame->utime), report_);
   }
@@ -134,19 +138,23 @@ int64_t McapExportReport::total() const {
   return sum;
 }
 
-McapExportReport ExportMcap(const std::string& log_path, const std::string& mcap_path, const Channels& channels,
-                            const std::atomic<bool>& stop, const std::function<void(double)>& progress) {
+McapExportReport ExportMcap(const std::string& log_path, const std::string& mcap_path,
+                            const Channels& channels, const std::atomic<bool>& stop,
+                            const std::function<void(double)>& progress) {
   EventLogReader reader(log_path);
   McapWriter writer(mcap_path);
   McapChannels out(writer);
   McapExportReport report;
   SessionConverter converter(channels, out, &report);
-  const auto ours = [&channels](const std::string& channel) { return channel.rfind(channels.prefix, 0) == 0; };
+  const auto ours = [&channels](const std::string& channel) {
+    return channel.rfind(channels.prefix, 0) == 0;
+  };
   LogEvent event;
   int64_t events = 0;
   while (!stop.load() && reader.Next(&event, ours)) {
     if (ours(event.channel)) converter.Convert(event);
-    if (progress && ++events % 256 == 0 && reader.size() > 0) progress(double(reader.offset()) / double(reader.size()));
+    if (progress && ++events % 256 == 0 && reader.size() > 0)
+      progress(double(reader.offset()) / double(reader.size()));
   }
   report.log_problem = reader.problem();
   const std::string closed = writer.Close();

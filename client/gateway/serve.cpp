@@ -152,12 +152,33 @@ std::optional<TlsSetup> TlsFor(const ServeOptions& options, const tcp::endpoint&
   return SelfSignedTls(options.tls_directory, hosts);
 }
 
+/// --servers => the selection; std::invalid_argument naming a prefix that is none.
+ServerSelection SelectionOf(const std::vector<std::string>& servers, const Channels& channels) {
+  if (servers.empty()) return ServerSelection::One(channels.prefix);
+  if (servers.size() == 1 && servers[0] == "all") return ServerSelection::Many({});
+  for (const std::string& prefix : servers) {
+    const std::string problem = Channels::CheckPrefix(prefix);
+    if (!problem.empty()) throw std::invalid_argument("--servers " + prefix + ": " + problem + ", or all");
+  }
+  return ServerSelection::Many(servers);
+}
+
+/// "ALPHA_, BETA_", "every server heard", or the one prefix.
+std::string ServersText(const ServerSelection& selection) {
+  if (selection.many && selection.prefixes.empty()) return "every server heard";
+  std::string text;
+  for (const std::string& prefix : selection.prefixes) text += (text.empty() ? "" : ", ") + prefix;
+  return text;
+}
+
 }  // namespace
 
 int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
   tcp::endpoint endpoint;
+  ServerSelection selection;
   try {
     endpoint = ParseListen(options.listen);
+    selection = SelectionOf(options.servers, channels);
   } catch (const std::invalid_argument& error) {
     std::fprintf(stderr, "flagctl serve: %s\n", error.what());
     return 2;
@@ -177,8 +198,8 @@ int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
   gateway_options.signer = options.signer;
   gateway_options.record_directory = options.record_directory;
   gateway_options.video_exporter = options.video_exporter;
-  gateway_options.name = "flagsim (" + channels.prefix + " on " + bus.url() + ")";
-  Gateway gateway(bus, channels, gateway_options);
+  gateway_options.name = "flagsim (" + ServersText(selection) + " on " + bus.url() + ")";
+  Gateway gateway(bus, selection, gateway_options);
   ServerContext context{gateway,
                         {options.token, endpoint.address().is_loopback(), options.allow_origins},
                         std::to_string(UnixMicros()),
@@ -214,8 +235,9 @@ int Serve(Bus& bus, const Channels& channels, const ServeOptions& options) {
     std::printf(
         "flagctl serve: warning: plain HTTP beyond loopback: the token crosses the network in clear\n");
   }
-  std::printf("flagctl serve: bus %s, prefix %s; recordings go to %s/\n", bus.url().c_str(),
-              channels.prefix.c_str(), options.record_directory.c_str());
+  std::printf("flagctl serve: bus %s, %s %s; recordings go to %s/\n", bus.url().c_str(),
+              selection.many ? "servers" : "prefix", ServersText(selection).c_str(),
+              options.record_directory.c_str());
   std::fflush(stdout);
   io.run();
   std::printf("flagctl serve: stopped\n");

@@ -21,14 +21,17 @@ struct ServeOptions {
   std::string token;                      ///< "" = none on loopback, generated beyond it
   std::vector<std::string> allow_origins;
   std::string record_directory = "recordings";
-  double command_timeout = 2.0;  ///< s to wait for a command's ACK
-  CommandSigner signer;          ///< signs the commands it relays (flagctl --key-file)
+  double command_timeout = 2.0;               ///< s to wait for a command's ACK
+  CommandSigner signer;                       ///< signs the commands it relays (flagctl --key-file)
   RecordingExports::Exporter video_exporter;  ///< makes each recording's MP4 (flagctl export)
   /// TLS (HTTPS, WSS): with this certificate and key (PEM), on any address; else beyond loopback a
   /// self-signed pair kept in tls_directory, unless plain_http.
   std::string tls_certificate, tls_key;
   std::string tls_directory = "flagsim-tls";
   bool plain_http = false;  ///< beyond loopback without TLS (behind a proxy that adds it)
+  /// Several servers (their topics under /PREFIX): these prefixes, or {"all"} for every server
+  /// heard; empty: the one server on the globals' prefix, with plain topics.
+  std::vector<std::string> servers;
 };
 
 /// "HOST:PORT" => the address to listen on: HOST an IP address (a v6 one in brackets too) or

@@ -23,9 +23,9 @@ class SessionRecorder {
   static constexpr uint64_t kMaxBytes = uint64_t(4) << 30;  ///< a recording stops at this size
 
   /// Records every channel of `channels`; logs go into `directory` (made when the first
-  /// recording starts), and each finished one is exported in `formats`.
+  /// recording starts), named STEM-DATE-TIME.lcmlog, and each finished one is exported in `formats`.
   SessionRecorder(Bus& bus, const Channels& channels, std::string directory,
-                  std::vector<RecordingExports::Format> formats = {});
+                  std::vector<RecordingExports::Format> formats = {}, std::string stem = "flagsim");
   ~SessionRecorder();
 
   /// Each answers with the recording's state (schemas/record_result.json).
@@ -42,8 +42,8 @@ class SessionRecorder {
   bool recording() const { return recorder_ != nullptr; }
   /// Whether the recording needs a keyframe request now (LogRecorder::KeyframeRequestDue).
   bool KeyframeRequestDue(double now) { return recorder_ && recorder_->KeyframeRequestDue(now); }
-  /// The path of a finished recording, or a finished export of one, named `name` (no
-  /// directories in it); nullopt if none.
+  /// The path of a finished recording of this recorder's (its stem), or a finished export of
+  /// one, named `name` (no directories in it); nullopt if none.
   std::optional<std::string> FinishedFile(std::string_view name) const;
 
  private:
@@ -52,6 +52,7 @@ class SessionRecorder {
   Bus& bus_;
   const Channels& channels_;
   std::string directory_;
+  std::string stem_;
   std::unique_ptr<LogRecorder> recorder_;
   std::string name_;  ///< the current or last recording's file name
   double started_ = 0;

@@ -65,7 +65,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   double now = 0;
   gateway::GatewayOptions options;
   options.clock = [&now] { return now; };
-  gateway::Gateway gateway(bus, channels, options);
+  gateway::Gateway gateway(bus, gateway::ServerSelection::One(channels.prefix), options);
   fuzz::ReadingClient client(gateway);
   client.SubscribeAll();
   FlagctlReaders flagctl(bus, channels);

@@ -53,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   options.clock = [&now] { return now; };
   options.record_directory = RecordDirectory();
   {
-    gateway::Gateway gateway(bus, channels, options);
+    gateway::Gateway gateway(bus, gateway::ServerSelection::One(channels.prefix), options);
     fuzz::ReadingClient client(gateway);
     bus.Publish(channels.params, MakeParamsMessage(server.session().scene(), UnixMicros()));
     server.HandleAll();

@@ -32,7 +32,7 @@ namespace {
 
 /// A gateway whose recordings directory holds one finished recording, for /recordings/NAME.
 struct Served {
-  Served() : bus("memq://"), gateway(bus, channels, Options()) {
+  Served() : bus("memq://"), gateway(bus, gateway::ServerSelection::One(channels.prefix), Options()) {
     std::filesystem::create_directories(Options().record_directory);
     std::ofstream(Options().record_directory + "/flagsim-20260101-000000.lcmlog") << "recorded";
   }

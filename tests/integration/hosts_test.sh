@@ -3,8 +3,12 @@
 # multicast with ttl=1 crossing it), inside the private namespace ctest gives this test
 # (scripts/netns-run). Host 1 runs flagd with prefix ALPHA_, host 2 flagd with BETA_ (both taking
 # only signed commands; small frames, 10 a second, since both share this machine's cores), host 3
-# records each, host 5 steers both through 5 % loss on its link.
-#   - how near real time each server runs beside the other (a figure, printed)
+# records each, host 4 runs one gateway for both (flagctl serve --servers all), host 5 steers
+# both through 5 % loss on its link.
+#   - how near real time each server runs beside the others (a figure, printed), and the
+#     datagrams host 5's link lost (counted)
+#   - the gateway offers both servers under their prefixes; a Foxglove client on host 4 takes
+#     both pictures and steers one of them through it
 #   - a command reaches its own server only, and is applied once though resent
 #   - the recordings hold both sessions whole: each replays bit for bit
 #   - signed commands are taken across hosts whose clocks differ within the freshness window
@@ -16,6 +20,7 @@ for command in faketime nsenter nft; do
   command -v "$command" >/dev/null || { echo "skipped: no $command (scripts/install-deps.sh installs it)"; exit 77; }
 done
 flagd=$build/server/flagd flagctl=$build/client/flagctl
+web_tests=$(cd "$(dirname "$0")/../web" && pwd)
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=1"
 work=$(mktemp -d)
 holders=() daemons=()
@@ -59,8 +64,10 @@ for host in 1 2 3 4 5; do add_host "$host"; done
 on 5 nft add table ip link_loss
 on 5 nft add chain ip link_loss input "{ type filter hook input priority 0; }"
 on 5 nft add chain ip link_loss output "{ type filter hook output priority 0; }"
-on 5 nft add rule ip link_loss input meta l4proto udp numgen random mod 100 lt 5 drop
-on 5 nft add rule ip link_loss output meta l4proto udp numgen random mod 100 lt 5 drop
+on 5 nft add rule ip link_loss input meta l4proto udp numgen random mod 100 lt 5 counter drop
+on 5 nft add rule ip link_loss output meta l4proto udp numgen random mod 100 lt 5 counter drop
+on 5 nft add rule ip link_loss input meta l4proto udp counter
+on 5 nft add rule ip link_loss output meta l4proto udp counter
 pass "five hosts on one bridge, host 5's link losing 5 % each way"
 
 "$flagctl" keygen -o "$work/ops.key" >/dev/null
@@ -91,6 +98,10 @@ recorders=($!)
 on 3 "$flagctl" --key-file "$work/ops.key" --prefix BETA_ record -o "$work/beta.lcmlog" --duration 12 \
   >"$work/record-beta.txt" 2>&1 &
 recorders+=($!)
+# Host 4: one gateway for both servers, signing what it relays.
+on 4 "$flagctl" --key-file "$work/ops.key" serve --servers all --listen 127.0.0.1:0 --record-dir "$work/gateway" \
+  >"$work/serve.txt" 2>&1 &
+daemons+=($!)
 for _ in $(seq 100); do  # until both recorders are writing (at most 20 s)
   [[ -s $work/alpha.lcmlog && -s $work/beta.lcmlog ]] && break
   sleep 0.2
@@ -128,6 +139,32 @@ for prefix in ALPHA_ BETA_; do
   awk -v p="$prefix" -v a="$sim0" -v b="$sim1" -v c="$up0" -v d="$up1" \
     'BEGIN { if (d > c) printf "figure: %s ran at %.3f of real time over %.1f s, beside the other\n", p, (b - a) / (d - c), d - c }'
 done
+
+# The gateway on host 4, with Foxglove's own protocol client beside it (loopback in host 4).
+if [[ -d $web_tests/node_modules ]] && command -v node >/dev/null; then
+  await_text "$work/serve.txt" "live view" || fail "no URL from the gateway on host 4" "$work/serve.txt"
+  port=$(sed -n 's#.*live view *http://[^:]*:\([0-9]*\)/.*#\1#p' "$work/serve.txt" | head -1)
+  expect 0 "a client of the gateway on host 4 watches both servers and steers BETA_" \
+    on 4 node "$web_tests/servers_watch.mjs" "ws://127.0.0.1:$port/" --servers ALPHA_,BETA_ --seconds 3 --steer BETA_
+  cat "$work/out"
+  matches '"live":true,"path":"/ALPHA_"' "  the gateway lists ALPHA_, live"
+  matches '"live":true,"path":"/BETA_"' "  and BETA_"
+  matches '"ALPHA_":[1-9][0-9.]*,"BETA_":[1-9]' "  the client takes both pictures"
+  matches '"steer":\{"accepted":true' "  BETA_ took the gateway's signed command"
+  expect 0 "BETA_'s parameters after the gateway's command" on 5 "$flagctl" --timeout 10 --prefix BETA_ params
+  matches "^damping +0.07 " "  BETA_ took it"
+  expect 0 "ALPHA_'s parameters" on 5 "$flagctl" --timeout 10 --prefix ALPHA_ params
+  matches "^damping +0.08 " "  ALPHA_ kept its own"
+else
+  echo "skipped: the gateway's part needs node and the tests' Node packages (a build with FLAGSIM_WEB)"
+fi
+
+# What host 5's link lost: nft's counters of the dropping rules against all UDP each way.
+on 5 nft list table ip link_loss | awk '
+  /drop/ { dropped[++d] = $(NF - 3) } /counter packets/ && !/drop/ { total[++t] = $(NF - 2) }
+  END { for (i = 1; i <= 2; i++) if (total[i] > 0)
+          printf "figure: host 5 %s: %d of %d UDP datagrams lost (%.1f %%)\n", i == 1 ? "in" : "out",
+                 dropped[i], total[i] + dropped[i], 100 * dropped[i] / (total[i] + dropped[i]) }'
 
 wait "${recorders[@]}" || true
 for name in alpha beta; do

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 
 #include "server/service/server.hpp"
 
@@ -29,6 +30,11 @@ class SimulatedClock {
   void Step(Server& server) {
     now_ += server.session().scene().sim.dt;
     server.Tick(now_);
+  }
+  /// As Step, for several servers of the same step that share the clock.
+  void Step(const std::vector<Server*>& servers) {
+    now_ += servers.front()->session().scene().sim.dt;
+    for (Server* server : servers) server->Tick(now_);
   }
   /// Steps `server` until `done()` or `limit` s of the clock have passed; whether `done()`.
   template <class Done>

@@ -25,7 +25,7 @@ TEST(GatewayRestart, ClientsFollowANewServerWhoseFramesStartAgain) {
   flagsim::testing::SimulatedClock clock;
   Bus bus("memq://");
   Channels channels;
-  Gateway gateway(bus, channels, OptionsOn(clock));
+  Gateway gateway(bus, ServerSelection::One(channels.prefix), OptionsOn(clock));
   FakeClient client(gateway);
   client.Subscribe(kTilesChannel);
   testing::TileUpdateReader reader;
@@ -53,7 +53,7 @@ TEST(GatewayRestart, ClientsFollowANewServerWhoseFramesStartAgain) {
   Server second(bus, channels, SmallScene(), clock.ServerOnIt());
   ASSERT_TRUE(run_until(second, [&] { return reader.frame_id() < last_of_first; }))
       << "the client still shows frame " << reader.frame_id() << " of the old server";
-  EXPECT_EQ(gateway.counters().server_restarts, 1u);
+  EXPECT_EQ(gateway.server(0)->counters().server_restarts, 1u);
   ASSERT_TRUE(run_until(second, [&] { return reader.frame_id() >= 3; }));
   EXPECT_EQ(reader.frame_id(), gateway.frame()->frame_id) << "the client is on the new server's newest frame";
 }

@@ -32,7 +32,7 @@ class GatewayTest : public ::testing::Test {
   GatewayTest()
       : bus_("memq://"),
         server_(bus_, channels_, SmallScene(), clock_.ServerOnIt()),
-        gateway_(bus_, channels_, OptionsOn(clock_)),
+        gateway_(bus_, ServerSelection::One(channels_.prefix), OptionsOn(clock_)),
         client_(gateway_) {}
 
   /// Runs the server, the bus and the gateway until `done` (the client reading all along),
@@ -191,7 +191,8 @@ TEST(GatewayWithKeys, TheServerTakesWhatTheGatewaySigns) {
   Server server(bus, channels, SmallScene(), keyed);
   GatewayOptions signing = OptionsOn(clock), plain = OptionsOn(clock);
   signing.signer = CommandSigner(key);
-  Gateway signed_gateway(bus, channels, signing), plain_gateway(bus, channels, plain);
+  const ServerSelection one = ServerSelection::One(channels.prefix);
+  Gateway signed_gateway(bus, one, signing), plain_gateway(bus, one, plain);
   FakeClient signed_page(signed_gateway), plain_page(plain_gateway);
   signed_page.Call(kWindService, 1, R"({"velocity": [7, 0, 0]})");
   plain_page.Call(kWindService, 2, R"({"velocity": [3, 0, 0]})");

@@ -19,7 +19,9 @@ namespace http = boost::beast::http;
 class HttpRoutingTest : public ::testing::Test {
  protected:
   HttpRoutingTest()
-      : bus_("memq://"), gateway_(bus_, channels_, Options()), context_{gateway_, {}, "1", 0, nullptr, ""} {}
+      : bus_("memq://"),
+        gateway_(bus_, ServerSelection::One(channels_.prefix), Options()),
+        context_{gateway_, {}, "1", 0, nullptr, ""} {}
 
   static GatewayOptions Options() {
     GatewayOptions options;

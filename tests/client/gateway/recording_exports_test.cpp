@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 template <class Done>
 bool Eventually(const Done& done) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!done() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (!done() && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   return done();
 }
 
@@ -39,7 +40,8 @@ TEST(RecordingExports, EachFormatIsOfferedOnlyOnceWhole) {
          while (!release.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
          return std::string();
        }},
-      {"mp4", [](const std::string&, const std::string&, const std::atomic<bool>&) { return std::string("no ffmpeg"); }},
+      {"mp4", [](const std::string&, const std::string&,
+                 const std::atomic<bool>&) { return std::string("no ffmpeg"); }},
   });
   EXPECT_EQ(exports.State("session.lcmlog"), nlohmann::json::object());
   exports.Begin(log);

@@ -65,6 +65,7 @@ class TileUpdateReader {
 
   const std::vector<uint8_t>& image() const { return image_; }
   int64_t frame_id() const { return frame_id_; }
+  int width() const { return width_; }
   bool keyframe() const { return keyframe_; }
   uint32_t tiles() const { return tiles_; }
 

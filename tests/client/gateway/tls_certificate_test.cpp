@@ -26,12 +26,14 @@ TEST(TlsCertificate, ASelfSignedPairIsMadeOnceForItsAddresses) {
   const fs::path directory = Scratch("tls");
   const TlsSetup first = SelfSignedTls(directory.string(), {"127.0.0.1", "10.1.2.3"});
   EXPECT_TRUE(first.self_signed);
-  EXPECT_TRUE(std::regex_match(first.fingerprint, std::regex("([0-9A-F]{2}:){31}[0-9A-F]{2}"))) << first.fingerprint;
+  EXPECT_TRUE(std::regex_match(first.fingerprint, std::regex("([0-9A-F]{2}:){31}[0-9A-F]{2}")))
+      << first.fingerprint;
   struct stat info {};
   ASSERT_EQ(::stat((directory / "gateway.key").c_str(), &info), 0);
   EXPECT_EQ(info.st_mode & 0777, 0600u) << "the key is its owner's alone";
   EXPECT_EQ(SelfSignedTls(directory.string(), {"10.1.2.3"}).fingerprint, first.fingerprint) << "kept";
-  EXPECT_NE(SelfSignedTls(directory.string(), {"10.9.9.9"}).fingerprint, first.fingerprint) << "a new address";
+  EXPECT_NE(SelfSignedTls(directory.string(), {"10.9.9.9"}).fingerprint, first.fingerprint)
+      << "a new address";
   fs::remove_all(directory);
 }
 
@@ -50,7 +52,8 @@ TEST(TlsCertificate, WhatIsWrongWithAGivenPairIsNamed) {
     return std::string("accepted");
   };
   EXPECT_EQ(refusal(cert, (two / "gateway.key").string()),
-            "--tls-key " + (two / "gateway.key").string() + " does not match the certificate in --tls-cert " + cert);
+            "--tls-key " + (two / "gateway.key").string() + " does not match the certificate in --tls-cert " +
+                cert);
   EXPECT_EQ(refusal(key, key), "--tls-cert " + key + ": not a PEM certificate that can be read");
   EXPECT_EQ(refusal(cert, cert), "--tls-key " + cert + ": not a PEM private key that can be read");
   fs::remove_all(one);
