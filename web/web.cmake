@@ -22,10 +22,13 @@ set(web_sources
   ${web_dir}/build.mjs
   ${web_dir}/index.html
   ${web_dir}/style.css
+  ${web_dir}/src/beside_view.js
   ${web_dir}/src/call_coalescer.js
   ${web_dir}/src/camera_controls.js
   ${web_dir}/src/camera_math.js
   ${web_dir}/src/camera_panel.js
+  ${web_dir}/src/clock_controls.js
+  ${web_dir}/src/clock_state.js
   ${web_dir}/src/connection.js
   ${web_dir}/src/design_panel.js
   ${web_dir}/src/design_upload.js
@@ -39,6 +42,9 @@ set(web_sources
   ${web_dir}/src/params_table.js
   ${web_dir}/src/picture_stream.js
   ${web_dir}/src/plots.js
+  ${web_dir}/src/server_list.js
+  ${web_dir}/src/server_panel.js
+  ${web_dir}/src/server_scope.js
   ${web_dir}/src/server_watch.js
   ${web_dir}/src/session_tools.js
   ${web_dir}/src/status_bar.js

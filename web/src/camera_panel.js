@@ -48,9 +48,15 @@ export class CameraPanel {
     this.controls.move(request);
   }
 
-  /// `/gateway/status`'s client count: how many viewers share the camera.
-  setViewers(count) {
+  /// `/gateway/status`'s client count: how many viewers share the camera. A gateway serving
+  /// several servers (`server` the one steered) counts the viewers of all of them.
+  setViewers(count, server = "") {
     const others = Math.max(0, count - 1);
+    if (server) {
+      this.shared.textContent = `This camera is shared: every viewer of ${server} sees and moves the same view ` +
+        `(the gateway has ${others} other client${others === 1 ? "" : "s"}, of any of its servers).`;
+      return;
+    }
     this.shared.textContent = others === 0
       ? "This camera is shared: every viewer sees and moves the same view (no one else is watching now)."
       : `This camera is shared: ${others} other viewer${others === 1 ? " sees" : "s see"} and move${others === 1 ? "s" : ""} the same view.`;

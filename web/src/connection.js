@@ -5,7 +5,9 @@
 //   call(name, request) --serviceCallRequest(json)--> serviceCallResponse(json) --> promise
 //   setParameters(values) --setParameters(id)--> parameterValues(id) | status(setParameters:id)
 //
-// Wanted topics and parameter subscriptions are kept across reconnects and renewed on each.
+// Wanted topics and parameter subscriptions are kept across reconnects and renewed on each; a
+// topic is wanted while any part of the page holds a subscription to it (server_scope.js, one per
+// server shown, subscribes and unsubscribes through here).
 // The client's own module: the package's index also brings the Node server and its `debug`.
 import FoxgloveClient from "@foxglove/ws-protocol/dist/esm/src/FoxgloveClient.js";
 
@@ -26,7 +28,7 @@ export class Connection {
     this.listeners = new Map();        // event name -> Set of functions
     this.channelsByTopic = new Map();  // topic -> advertised channel
     this.topicsBySubscription = new Map();
-    this.wantedTopics = new Set();
+    this.wantedTopics = new Map();     // topic -> how many subscriptions hold it
     this.servicesByName = new Map();   // name -> advertised service
     this.pendingCalls = new Map();     // callId -> { resolve, reject, timer }
     this.pendingParameters = new Map();  // request id -> { resolve, reject, timer }
@@ -41,6 +43,10 @@ export class Connection {
   on(event, listener) {
     if (!this.listeners.has(event)) this.listeners.set(event, new Set());
     this.listeners.get(event).add(listener);
+  }
+
+  off(event, listener) {
+    this.listeners.get(event)?.delete(listener);
   }
 
   emit(event, ...args) {
@@ -132,9 +138,24 @@ export class Connection {
 
   /// Receives `topic` from now on, and again after every reconnect.
   subscribe(topic) {
-    this.wantedTopics.add(topic);
+    this.wantedTopics.set(topic, (this.wantedTopics.get(topic) ?? 0) + 1);
     const channel = this.channelsByTopic.get(topic);
     if (channel && this.connected) this.subscribeChannel(channel);
+  }
+
+  /// Takes back one subscribe(topic); the last one taken back ends the gateway's subscription.
+  unsubscribe(topic) {
+    const holders = (this.wantedTopics.get(topic) ?? 0) - 1;
+    if (holders > 0) {
+      this.wantedTopics.set(topic, holders);
+      return;
+    }
+    this.wantedTopics.delete(topic);
+    for (const [subscriptionId, channel] of this.topicsBySubscription) {
+      if (channel.topic !== topic) continue;
+      this.topicsBySubscription.delete(subscriptionId);
+      if (this.connected) this.client.unsubscribe(subscriptionId);
+    }
   }
 
   subscribeChannel(channel) {

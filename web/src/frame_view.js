@@ -53,6 +53,13 @@ export class FrameView {
     this.hud.classList.toggle("bad", !image.hashOk);
   }
 
+  /// Forgets the picture last shown (another server's comes next): the line over it empties.
+  forget() {
+    this.lastImage = null;
+    this.shownTimes = [];
+    if (this.hud) this.hud.textContent = "";
+  }
+
   dropOldTimes(now) {
     while (this.shownTimes.length > 0 && now - this.shownTimes[0] > kFpsWindow) this.shownTimes.shift();
   }

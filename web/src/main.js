@@ -1,6 +1,10 @@
 // The live view's wiring: one Connection to the gateway (the page's own host, its token passed
-// on), and each channel to the parts that show it.
+// on), seen through a ServerScope of the server the page steers, and each channel to the parts
+// that show it. A gateway may serve several servers, each under its path (`/ALPHA_/flag/tiles`);
+// the scope gives the parts the single server's names (`/flag/tiles`) of the one steered.
 //
+//   /gateway/servers -> which server is steered (`?server=P`, else the first live one): the
+//                       scope's path; ServerPanel; BesideView (`?beside=B`: B's picture too)
 //   /flag/tiles    -> PictureStream -> FrameImage -> FrameView (canvas), status bar, hooks
 //   /flag/camera   -> CameraControls (pixels -> metres), CameraPanel
 //   /flag/params   -> ParamPanel (+ protocol parameters), timeline keys
@@ -24,6 +28,10 @@ import { Plots } from "./plots.js";
 import { DesignPanel } from "./design_panel.js";
 import { SessionTools } from "./session_tools.js";
 import { ServerWatch } from "./server_watch.js";
+import { BesideView } from "./beside_view.js";
+import { besideLinkFor, chooseServer, readServerChoice, readServerList, waitingForServer } from "./server_list.js";
+import { ServerPanel } from "./server_panel.js";
+import { ServerScope } from "./server_scope.js";
 import { readViewLink } from "./view_link.js";
 import { StatusBar } from "./status_bar.js";
 import { installTestHooks } from "./test_hooks.js";
@@ -34,7 +42,8 @@ import { createToaster } from "./toast.js";
 import { el } from "./dom.js";
 import { WindPanel } from "./wind_panel.js";
 
-const kJsonTopics = ["/flag/state", "/flag/status", "/flag/params", "/flag/timeline", "/flag/camera", "/flag/acks", "/gateway/status"];
+const kJsonTopics = ["/flag/state", "/flag/status", "/flag/params", "/flag/timeline", "/flag/camera", "/flag/acks", "/gateway/status",
+                     "/gateway/servers"];
 const kStatusBarPeriod = 500;  ///< ms between updates of the frames-shown rate
 const textDecoder = new TextDecoder();
 const byId = (id) => document.getElementById(id);
@@ -48,10 +57,15 @@ function withToken(url) {
 
 async function start() {
   const hasher = await createHasher();  // XXH3-64 (WASM) is ready before the first tile
-  const connection = new Connection(gatewayUrl(window.location, token));
+  const gateway = new Connection(gatewayUrl(window.location, token));
+  const connection = new ServerScope(gateway);  // its path once /gateway/servers names the server
   const toast = createToaster(byId("toasts"));
   const page = {
-    connection, hasher, toast,
+    gateway, connection, hasher, toast,
+    choice: readServerChoice(window.location.search),  // { server, beside } asked for in the address
+    servers: null,  // the newest /gateway/servers
+    server: "",     // the prefix of the server steered, once chosen
+    steeredWasGone: false,  // the newest list said the server steered was gone
     image: new FrameImage(hasher),
     view: new FrameView({ stage: byId("stage"), canvas: byId("picture"), hud: byId("hud") }),
     params: [], timeline: null, camera: null, state: null, status: null, lastAck: null, lastError: "",
@@ -59,6 +73,11 @@ async function start() {
   const parts = createParts(page);
   page.serverWatch = new ServerWatch({
     onRestart: () => toast("The server restarted: a new session, its frames and time from the start", "warning"),
+  });
+  page.beside = new BesideView({
+    connection: gateway, hasher, stage: byId("beside-stage"),
+    onChange: (prefix) => onBesideChange(page, parts, prefix),
+    onProblem: (text) => (page.lastError = text),
   });
   const frameShown = installTestHooks(page);
   page.stream = new PictureStream({
@@ -72,12 +91,15 @@ async function start() {
     onProblem: (text) => (page.lastError = text),
   });
   wireConnection(page, parts);
+  for (const problem of page.choice.problems) toast(problem, "error");
+  if (page.choice.beside) page.beside.want(page.choice.beside, page.servers);
   setInterval(() => {
     parts.statusBar.setFps(page.view.shownFps());
     page.view.updateHud();
+    page.beside.tick();
     showConnection(page, parts);
   }, kStatusBarPeriod);
-  connection.start();
+  gateway.start();
 }
 
 /// The panels, each given what it reads and the connection it sends through.
@@ -98,6 +120,10 @@ function createParts(page) {
       current: () => ({ wind: windPanel.chosenWind(), params: page.params, camera: page.camera }),
     }),
     plots: new Plots({ container: byId("plots") }),
+    serverPanel: new ServerPanel({
+      section: byId("server-panel"), container: byId("server-body"),
+      onBeside: (prefix) => (prefix ? page.beside.want(prefix, page.servers) : page.beside.close()),
+    }),
     sessionTools: new SessionTools({
       container: byId("session-tools"), connection, toast, withToken,
       frame: () => ({ id: page.image.frameId, hashOk: page.image.hashOk }),
@@ -117,10 +143,10 @@ function wireConnection(page, parts) {
     if (!connected) page.serverWatch.onDisconnect();
     showConnection(page, parts);
     byId("stage").classList.toggle("offline", !connected);
-    byId("stage-empty").textContent = connected ? "waiting for the first frame …" : `no connection to the gateway: ${text}`;
+    showStageNote(page);
   });
-  connection.on("serverInfo", (info) => {
-    parts.statusBar.setServer(info.name);
+  connection.on("serverInfo", () => {
+    showServerName(page, parts);
     if (page.params.length > 0) connection.subscribeParameters(page.params.map((p) => p.name));
   });
   connection.on("message", (topic, data) => {
@@ -168,6 +194,82 @@ function openLinkedView(page, parts) {
   offer.hidden = false;
 }
 
+/// The gateway's servers, newest list: the one to steer chosen once (`?server=P`, else the first
+/// live one), the panel and the picture beside follow.
+function onServerList(page, parts, servers) {
+  page.servers = servers;
+  if (!page.server) steer(page, parts, chooseServer(servers, page.choice.server));
+  followSteered(page, servers.find((server) => server.prefix === page.server));
+  page.beside.follow(servers);
+  showServers(page, parts);
+  showStageNote(page);
+}
+
+/// The steered server's newest entry: under another path (a gateway started again in the other
+/// mode) the page starts afresh; back after it was withdrawn, its parameters are asked for again.
+function followSteered(page, entry) {
+  if (!entry) return;
+  if (entry.path !== page.connection.path) {
+    window.location.reload();
+    return;
+  }
+  if (entry.live && page.steeredWasGone && page.params.length > 0) {
+    page.connection.subscribeParameters(page.params.map((p) => p.name));
+  }
+  page.steeredWasGone = !entry.live;
+}
+
+/// From now on the panels are `entry`'s: the scope takes its path and subscribes to its channels.
+/// Another server is steered by opening the page again (the server panel's links).
+function steer(page, parts, entry) {
+  if (!entry) return;
+  page.server = entry.prefix;
+  page.connection.setPath(entry.path);
+  if (entry.path !== "") {
+    document.title = `flagsim · ${entry.prefix} · live view`;
+    const caption = byId("stage-caption");
+    caption.textContent = `${entry.prefix} · steered`;
+    caption.hidden = false;
+  }
+  if (page.beside.prefix === entry.prefix) {
+    page.toast(`beside: ${entry.prefix} is the server steered; it is shown once`, "warning");
+    page.beside.close();
+  }
+  showServerName(page, parts);
+}
+
+/// The server panel's rows, with which server is steered and which watched beside (once the
+/// gateway has said which servers it serves).
+function showServers(page, parts) {
+  if (page.servers === null) return;
+  parts.serverPanel.update(page.servers, { steered: page.server, beside: page.beside.prefix, wanted: page.choice.server });
+}
+
+/// The picture beside now watches `prefix` ("" none): the address says so, the panel too.
+function onBesideChange(page, parts, prefix) {
+  window.history.replaceState(null, "", besideLinkFor(window.location, prefix));
+  showServers(page, parts);
+}
+
+/// What the stage says while it has no picture: no gateway, no server (yet), or no frame yet.
+function showStageNote(page) {
+  const entry = page.servers?.find((server) => server.prefix === page.server);
+  byId("stage-empty").textContent = !page.gateway.connected ? `no connection to the gateway: ${page.gatewayText ?? "connecting …"}`
+    : !page.server ? waitingForServer(page.servers, page.choice.server)
+    : entry && !entry.live ? `${page.server} is gone; waiting for it to come back …`
+    : "waiting for the first frame …";
+}
+
+/// Whether the gateway serves several servers (each under a path of its own).
+function severalServers(page) {
+  return page.servers?.some((server) => server.path !== "") ?? false;
+}
+
+/// The status bar's server field: the gateway's name, and the server steered when it has several.
+function showServerName(page, parts) {
+  parts.statusBar.setServer(page.gateway.serverInfo?.name ?? "", severalServers(page) ? page.server : "");
+}
+
 /// The connection field: the gateway's connection, and whether a server is behind it.
 function showConnection(page, parts) {
   if (!page.connection.connected) {
@@ -209,7 +311,10 @@ function onJsonMessage(page, parts, topic, message) {
       openLinkedView(page, parts);
       break;
     case "/gateway/status":
-      if (Number.isFinite(message.clients)) parts.cameraPanel.setViewers(message.clients);
+      if (Number.isFinite(message.clients)) parts.cameraPanel.setViewers(message.clients, severalServers(page) ? page.server : "");
+      break;
+    case "/gateway/servers":
+      onServerList(page, parts, readServerList(message));
       break;
     case "/flag/acks":
       page.lastAck = message;

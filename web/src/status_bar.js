@@ -1,7 +1,8 @@
 // The status bar: connection, server, the model of the flag, frame id, frames shown per second,
 // hash ok, last ACK.
 //
-//   connection state, serverInfo, /flag/status, each frame shown, /flag/acks --> one line of fields
+//   connection state, serverInfo (and the server steered), /flag/status, each frame shown,
+//   /flag/acks --> one line of fields
 import { el, formatNumber } from "./dom.js";
 
 export class StatusBar {
@@ -23,9 +24,11 @@ export class StatusBar {
     this.connection.textContent = text;
   }
 
-  setServer(name) {
-    this.server.textContent = name || "–";
-    this.server.title = "the gateway's serverInfo name";
+  /// The gateway's serverInfo name, after the prefix of the server steered when the gateway
+  /// serves several ("" when it serves one).
+  setServer(name, prefix = "") {
+    this.server.textContent = prefix ? `${prefix} · ${name || "–"}` : name || "–";
+    this.server.title = prefix ? `the server steered, ${prefix}; the gateway's serverInfo name: ${name}` : "the gateway's serverInfo name";
   }
 
   /// The model in force from a flagsim.Status: grid, integrator, substeps, auto's estimate of

@@ -6,6 +6,11 @@
 //   window.flagsim.frameHashHex()  -> XXH3-64 of that image, 16 hex digits (computed now)
 //   window.flagsim.waitForFrame(predicate, timeoutMs) -> resolves with the first frame shown
 //     (from now on) for which predicate(frame) holds; rejects after timeoutMs
+//   window.flagsim.server   -> the prefix of the server steered ("" until chosen)
+//   window.flagsim.servers  -> the newest /gateway/servers, read (null before the first)
+//   window.flagsim.beside   -> the picture beside: null, or { prefix, framesShown (since it was
+//     chosen), frame { id, width, height, step, hash, hashOk } }
+//   window.flagsim.besideImageRGB() -> a copy of the picture beside, RGB8 (empty while closed)
 //
 // `page` is the page's live state, owned by main.js; nothing here changes it.
 
@@ -33,7 +38,11 @@ export function installTestHooks(page) {
     get lastAck() { return page.lastAck; },
     get lastError() { return page.lastError; },
     get refreshes() { return page.stream.refreshes; },
+    get server() { return page.server; },
+    get servers() { return page.servers; },
+    get beside() { return page.beside.hookState(); },
     imageRGB: () => page.image.rgb.slice(),
+    besideImageRGB: () => page.beside.imageRGB(),
     frameHashHex: () => page.hasher.hex(page.image.rgb),
     waitForFrame(predicate = () => true, timeoutMs = 10000) {
       return new Promise((resolve, reject) => {
