@@ -21,7 +21,8 @@ enum ExitCode { kOk = 0, kFailed = 1, kUsage = 2, kRejected = 3, kNoAnswer = 4, 
 struct Globals {
   std::string lcm_url;
   std::string prefix = Channels::kDefaultPrefix;
-  double timeout = 2.0;  ///< s to wait for an answer
+  const CLI::Option* prefix_option = nullptr;  ///< whether --prefix was given (serve: one server, else all)
+  double timeout = 2.0;                        ///< s to wait for an answer
   std::string key_file;  ///< --key-file: sign every command with its first key; "" unsigned
 };
 
@@ -46,6 +47,7 @@ void AddSetCommand(CLI::App& app, Invocation& invocation);
 void AddResetCommand(CLI::App& app, Invocation& invocation);
 void AddParamsCommand(CLI::App& app, Invocation& invocation);
 void AddStatusCommand(CLI::App& app, Invocation& invocation);
+void AddServersCommand(CLI::App& app, Invocation& invocation);
 void AddRefreshCommand(CLI::App& app, Invocation& invocation);
 // The streams (flagctl_streams.cpp).
 void AddWatchCommand(CLI::App& app, Invocation& invocation);

@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <exception>
 
-#include "common/cli_checks.hpp"
 #include "client/flagctl_commands.hpp"
+#include "common/cli_checks.hpp"
 
 namespace {
 
@@ -24,9 +24,10 @@ void AddGlobalOptions(CLI::App& app, flagsim::Globals& globals) {
   app.fallthrough();
   app.add_option("--lcm-url", globals.lcm_url,
                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
-  app.add_option("--prefix", globals.prefix, "channel prefix of the server: letters, digits and '_'")
-      ->check(flagsim::ChannelPrefix())
-      ->capture_default_str();
+  globals.prefix_option =
+      app.add_option("--prefix", globals.prefix, "channel prefix of the server: letters, digits and '_'")
+          ->check(flagsim::ChannelPrefix())
+          ->capture_default_str();
   app.add_option("--timeout", globals.timeout, "seconds to wait for an answer")
       ->check(flagsim::AboveZero())
       ->capture_default_str();
@@ -47,10 +48,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Invocation invocation(stop_requested);
   AddGlobalOptions(app, invocation.globals);
-  for (const auto add :
-       {AddWindCommand, AddSetCommand, AddResetCommand, AddParamsCommand, AddStatusCommand, AddRefreshCommand,
-        AddWatchCommand, AddRecordCommand, AddExportCommand, AddSnapshotCommand, AddCameraCommand,
-        AddKeyframeCommand, AddTimeCommand, AddDesignCommand, AddServeCommand, AddKeygenCommand}) {
+  for (const auto add : {AddWindCommand, AddSetCommand, AddResetCommand, AddParamsCommand, AddStatusCommand,
+                         AddServersCommand, AddRefreshCommand, AddWatchCommand, AddRecordCommand,
+                         AddExportCommand, AddSnapshotCommand, AddCameraCommand, AddKeyframeCommand,
+                         AddTimeCommand, AddDesignCommand, AddServeCommand, AddKeygenCommand}) {
     add(app, invocation);
   }
   std::signal(SIGINT, OnSignal);

@@ -17,6 +17,8 @@ int Serve(const Globals& globals, const gateway::ServeOptions& options) {
   Bus bus(Bus::WithReceiveBuffer(globals.lcm_url, 8 << 20));
   const Channels channels(globals.prefix);
   gateway::ServeOptions serve = options;
+  // Without --prefix or --servers: every server heard, each under its prefix.
+  if (serve.servers.empty() && globals.prefix_option->count() == 0) serve.servers = {"all"};
   serve.command_timeout = globals.timeout;
   if (!globals.key_file.empty()) serve.signer = CommandSigner(ReadKeyFile(globals.key_file).front());
   serve.video_exporter = [globals](const std::string& log, const std::string& output,

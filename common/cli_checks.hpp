@@ -40,6 +40,18 @@ inline CLI::Validator ChannelPrefix() {
   return CLI::Validator([](std::string& input) { return Channels::CheckPrefix(input); }, "PREFIX");
 }
 
+/// A server's channel prefix: as ChannelPrefix, or auto for a random one of its own
+/// (Channels::RandomPrefix), put in its place.
+inline CLI::Validator ServerPrefix() {
+  return CLI::Validator(
+      [](std::string& input) {
+        if (input == "auto") input = Channels::RandomPrefix();
+        const std::string problem = Channels::CheckPrefix(input);
+        return problem.empty() ? problem : problem + ", or auto";
+      },
+      "PREFIX|auto");
+}
+
 /// After a parse that failed with `error`, when it failed because the deepest subcommand given
 /// wants one of its own: "'WORD' is not a subcommand[ of NAME]; allowed: ..." for a WORD left
 /// over, "NAME needs a subcommand; allowed: ..." for none; else "" (CLI11's own message says

@@ -1,5 +1,8 @@
 #include "messages/channels.hpp"
 
+#include <cstdio>
+#include <random>
+
 #include "common/printable_text.hpp"
 
 namespace flagsim {
@@ -36,6 +39,13 @@ std::string Channels::CheckPrefix(const std::string& prefix) {
       return quoted + " is not a channel prefix; " + allowed;
   }
   return "";
+}
+
+std::string Channels::RandomPrefix() {
+  std::random_device entropy;
+  char digits[8];
+  std::snprintf(digits, sizeof(digits), "%06X", unsigned(entropy() & 0xFFFFFF));
+  return std::string(kDefaultPrefix) + digits + "_";
 }
 
 std::string Channels::Unprefixed(const std::string& channel) const {

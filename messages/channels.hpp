@@ -16,6 +16,10 @@ struct Channels {
   /// else what is wrong and what is allowed. (An empty prefix would make the recorders take every
   /// channel on the bus.)
   static std::string CheckPrefix(const std::string& prefix);
+  /// A prefix of its own for a server among many started alike (replicas): the default prefix and
+  /// six random hex digits, e.g. "FLAGSIM_3F9A2C_". Two of 100 servers share one with a chance of
+  /// about 3 in 10000 (the birthday bound over 2^24); a server that does is told (ServerPresence).
+  static std::string RandomPrefix();
 
   explicit Channels(const std::string& prefix = kDefaultPrefix);
 

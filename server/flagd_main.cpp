@@ -24,8 +24,9 @@ void AddGlobalOptions(CLI::App& app, flagsim::FlagdGlobals& globals) {
   app.add_option("--lcm-url", globals.lcm_url,
                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
   app.add_option("--prefix", globals.prefix,
-                 "channel prefix, so several servers share a bus: letters, digits and '_'")
-      ->check(flagsim::ChannelPrefix())
+                 "channel prefix, so several servers share a bus: letters, digits and '_'; auto: "
+                 "FLAGSIM_ and six random hex digits (replicas started alike), said as it starts")
+      ->transform(flagsim::ServerPrefix())
       ->capture_default_str();
   app.add_option("--log-level", globals.log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))

@@ -84,6 +84,10 @@ for prefix in ALPHA_ BETA_; do
   fi
 done
 
+expect 0 "flagctl servers on host 5 lists both" on 5 "$flagctl" --timeout 3 servers
+matches "^ALPHA_ " "  ALPHA_"
+matches "^BETA_ " "  BETA_"
+
 # The recorders ask for a keyframe and checkpoint as they start: signed, as every keyframe request
 # to a server with keys must be.
 # Small pictures: the test is of the bus, and two servers share this machine's cores.

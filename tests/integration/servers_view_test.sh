@@ -2,7 +2,7 @@
 # One gateway for two servers, over udpm:// inside a private network namespace (ctest runs this
 # through scripts/netns-run): flagd with prefix ALPHA_ and flagd with BETA_ (small frames, 10 a
 # second, since both share this machine's cores; BETA_ with a design of its own), then
-# flagctl serve --servers all, and Chromium on its page steering ALPHA_ with BETA_ beside it
+# flagctl serve (no --prefix: every server heard), and Chromium on its page steering ALPHA_ with BETA_ beside it
 # (servers_test.mjs). The page's screenshot stays in BUILD_DIR/tests/live_view/servers.png.
 # Usage: servers_view_test.sh BUILD_DIR
 set -euo pipefail
@@ -51,11 +51,13 @@ for prefix in ALPHA_ BETA_; do
   expect 0 "  its camera at 320 x 180" "$flagctl" --prefix $prefix --timeout 10 camera size 320 180
 done
 
-echo "-- one gateway for both"
-"$flagctl" serve --servers all --listen 127.0.0.1:0 >"$work/serve.log" 2>&1 &
+echo "-- one gateway for both: flagctl serve without --prefix serves every server it hears"
+"$flagctl" serve --listen 127.0.0.1:0 >"$work/serve.log" 2>&1 &
 gateway=$!
 url=$(wait_for_url "$work/serve.log")
-pass "flagctl serve --servers all listens ($url)"
+pass "flagctl serve listens ($url)"
+if grep -q "servers every server heard" "$work/serve.log"; then pass "  for every server heard"
+else fail "  not for every server heard" "$work/serve.log"; fi
 
 start=$SECONDS
 if node "$tests/servers_test.mjs" "$url" "$flagctl" "$shots" "$flagd" "$work/beta.pid" >"$work/node.out" 2>&1; then
