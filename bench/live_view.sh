@@ -24,7 +24,8 @@ measure() {
   shift
   "$build/server/flagd" --log-level warn "$@" &
   server=$!
-  "$build/client/flagctl" serve --listen 127.0.0.1:0 --record-dir /tmp >"$build/bench/serve.log" 2>&1 &
+  # One server, plain topics (/flag/tiles), which measure.mjs follows.
+  "$build/client/flagctl" --prefix FLAGSIM_ serve --listen 127.0.0.1:0 --record-dir /tmp >"$build/bench/serve.log" 2>&1 &
   gateway=$!
   local port=""
   for _ in $(seq 100); do

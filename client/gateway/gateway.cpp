@@ -208,7 +208,8 @@ void Gateway::SubscribersChanged(uint32_t id, int delta) {
 // the record service's answers, which carry it too.
 void Gateway::RecordingEnded(const ServerLink& link, const std::string& why) {
   const std::string service = link.path() + "/flag/record";
-  std::fprintf(stderr, "flagctl serve: %s: recording stopped: %s\n", service.c_str(), why.c_str());
+  const std::string what = link.path().empty() ? "recording" : "recording of " + link.channels().prefix;
+  std::fprintf(stderr, "flagctl serve: %s stopped: %s\n", what.c_str(), why.c_str());
   for (auto& [id, client] : clients_)
     client->protocol().SendStatus(ClientProtocol::kError, service + ": " + why);
   WakeAll();

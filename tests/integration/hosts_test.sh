@@ -37,7 +37,9 @@ source "$(dirname "$0")/checks.sh"
 ip link add switch type bridge mcast_snooping 0
 ip link set switch up
 
-# on HOST COMMAND...: runs COMMAND in host HOST's network namespace.
+# on HOST COMMAND...: runs COMMAND in host HOST's network namespace. In the background, start it
+# with `nsenter -t "${holders[HOST]}" -n COMMAND &` instead, so that $! is COMMAND's own pid
+# (nsenter execs it) and not a subshell's, which a kill would leave COMMAND running past.
 on() {
   local host=$1
   shift
@@ -71,9 +73,9 @@ on 5 nft add rule ip link_loss output meta l4proto udp counter
 pass "five hosts on one bridge, host 5's link losing 5 % each way"
 
 "$flagctl" keygen -o "$work/ops.key" >/dev/null
-on 1 "$flagd" --prefix ALPHA_ --key-file "$work/ops.key" --set frame_rate=10 --log-level warn >"$work/alpha.log" 2>&1 &
+nsenter -t "${holders[1]}" -n "$flagd" --prefix ALPHA_ --key-file "$work/ops.key" --set frame_rate=10 --log-level warn >"$work/alpha.log" 2>&1 &
 daemons+=($!)
-on 2 "$flagd" --prefix BETA_ --key-file "$work/ops.key" --set frame_rate=10 --log-level warn >"$work/beta.log" 2>&1 &
+nsenter -t "${holders[2]}" -n "$flagd" --prefix BETA_ --key-file "$work/ops.key" --set frame_rate=10 --log-level warn >"$work/beta.log" 2>&1 &
 daemons+=($!)
 for prefix in ALPHA_ BETA_; do
   if on 5 bash -c "source '$(dirname "$0")/checks.sh'; await_server '$flagctl' $prefix"; then
@@ -96,14 +98,14 @@ for prefix in ALPHA_ BETA_; do
     fail "camera size for $prefix"
 done
 
-on 3 "$flagctl" --key-file "$work/ops.key" --prefix ALPHA_ record -o "$work/alpha.lcmlog" --duration 12 \
+nsenter -t "${holders[3]}" -n "$flagctl" --key-file "$work/ops.key" --prefix ALPHA_ record -o "$work/alpha.lcmlog" --duration 12 \
   >"$work/record-alpha.txt" 2>&1 &
 recorders=($!)
-on 3 "$flagctl" --key-file "$work/ops.key" --prefix BETA_ record -o "$work/beta.lcmlog" --duration 12 \
+nsenter -t "${holders[3]}" -n "$flagctl" --key-file "$work/ops.key" --prefix BETA_ record -o "$work/beta.lcmlog" --duration 12 \
   >"$work/record-beta.txt" 2>&1 &
 recorders+=($!)
 # Host 4: one gateway for both servers, signing what it relays.
-on 4 "$flagctl" --key-file "$work/ops.key" serve --servers all --listen 127.0.0.1:0 --record-dir "$work/gateway" \
+nsenter -t "${holders[4]}" -n "$flagctl" --key-file "$work/ops.key" serve --servers all --listen 127.0.0.1:0 --record-dir "$work/gateway" \
   >"$work/serve.txt" 2>&1 &
 daemons+=($!)
 for _ in $(seq 100); do  # until both recorders are writing (at most 20 s)
