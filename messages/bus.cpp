@@ -37,6 +37,7 @@ Bus::Bus(const std::string& url) : url_(ResolveUrl(url)), lcm_(std::make_unique<
 Bus::~Bus() = default;
 
 void Bus::Publish(const std::string& channel, const uint8_t* data, size_t size) {
+  const std::lock_guard<std::mutex> lock(publishing_);
   lcm_->publish(channel, data, static_cast<unsigned int>(size));
   bytes_published_ += size;
 }

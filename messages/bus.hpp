@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -42,11 +43,13 @@ class Bus : public Publisher {
 
   void Publish(const std::string& channel, const uint8_t* data, size_t size) override;
 
+  /// Safe from any thread: publishing is serialised (LCM's tcpq:// provider writes one stream,
+  /// which two threads publishing at once would interleave; udpm:// does not need it).
   template <class Message>
   void Publish(const std::string& channel, const Message& message) {
-    scratch_.resize(static_cast<size_t>(message.getEncodedSize()));
-    message.encode(scratch_.data(), 0, static_cast<int>(scratch_.size()));
-    Publish(channel, scratch_.data(), scratch_.size());
+    std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
+    message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    Publish(channel, bytes.data(), bytes.size());
   }
 
   /// `channel` may be a regular expression. `queue_capacity`: messages LCM holds for this
@@ -71,7 +74,7 @@ class Bus : public Publisher {
   std::string url_;
   std::unique_ptr<lcm::LCM> lcm_;
   std::vector<std::unique_ptr<Subscriber>> subscribers_;
-  std::vector<uint8_t> scratch_;
+  std::mutex publishing_;  ///< one publish at a time
   std::atomic<uint64_t> bytes_published_{0};
 };
 

@@ -3,7 +3,8 @@
 # Idempotent and non-interactive: installs only what is missing.
 #   scripts/install-deps.sh          build and run
 #   scripts/install-deps.sh --browser  also Chromium, for the live view's browser tests
-#   scripts/install-deps.sh --java   also a JDK, for the lcm-spy types jar
+#   scripts/install-deps.sh --java   also a JDK: the lcm-spy types jar, LCM's TCP hub (integration.tcp_bus) and
+#                                    the Java binding's check (messages.bindings)
 #   scripts/install-deps.sh --sanitize  also clang 14, its sanitizer runtimes and symbolizer (test.sh --sanitize)
 #   scripts/install-deps.sh --bench  also Mesa's EGL and OpenGL (the llvmpipe comparison), Bullet (the soft body
 #                                    comparison) and gnuplot (charts)

@@ -23,9 +23,10 @@ if [[ ${1:-} == --sanitize ]]; then
 fi
 case $sanitize in
   "")
-    scripts/install-deps.sh --browser --slurm
+    scripts/install-deps.sh --browser --slurm --java
     scripts/build.sh
-    exec ctest --test-dir build --output-on-failure --timeout 300 "$@" ;;
+    # The unit suites side by side; the integration tests one at a time (RUN_SERIAL).
+    exec ctest --test-dir build --output-on-failure --timeout 300 -j"$(nproc)" "$@" ;;
   address) build=build-asan sanitizers=address,undefined ;;
   thread) build=build-tsan sanitizers=thread
     set -- -L threaded "$@" ;;
