@@ -58,6 +58,25 @@ await_text() {
   done
   return 1
 }
+# gateway_url LOG: the first address `flagctl serve` printed in LOG, the live view's (it listens
+# on port 0: a free one; at most 10 s). gateway_port LOG: its port.
+gateway_url() {
+  for _ in $(seq 100); do
+    if grep -q "live view" "$1"; then
+      sed -n 's#.*live view *\(https\?://[^ ]*\).*#\1#p' "$1" | head -1
+      return 0
+    fi
+    sleep 0.1
+  done
+  echo "no URL in $1" >&2
+  cat "$1" >&2
+  return 1
+}
+gateway_port() {
+  local url
+  url=$(gateway_url "$1") || return 1
+  sed 's#^https\?://[^/]*:\([0-9]*\)/.*#\1#' <<<"$url"
+}
 # finish: the tally, and the exit code.
 finish() {
   echo "$passes passed, $failures failed"

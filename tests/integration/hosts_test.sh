@@ -23,45 +23,18 @@ flagd=$build/server/flagd flagctl=$build/client/flagctl
 web_tests=$(cd "$(dirname "$0")/../web" && pwd)
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=1"
 work=$(mktemp -d)
-holders=() daemons=()
+daemons=()
 stop() {
   for pid in "${daemons[@]}"; do kill "$pid" 2>/dev/null || true; done
   sleep 0.5
   for pid in "${daemons[@]}" "${holders[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
   rm -rf "$work"
 }
-trap stop EXIT
 source "$(dirname "$0")/checks.sh"
-
-# The switch: a bridge that floods multicast to every port (no snooping).
-ip link add switch type bridge mcast_snooping 0
-ip link set switch up
-
-# on HOST COMMAND...: runs COMMAND in host HOST's network namespace. In the background, start it
-# with `nsenter -t "${holders[HOST]}" -n COMMAND &` instead, so that $! is COMMAND's own pid
-# (nsenter execs it) and not a subshell's, which a kill would leave COMMAND running past.
-on() {
-  local host=$1
-  shift
-  nsenter -t "${holders[$host]}" -n "$@"
-}
-
-# add_host N: a namespace held by a sleeping process, its end of a veth pair on the switch,
-# 10.77.0.N/24, and multicast routed out of it.
-add_host() {
-  local host=$1
-  unshare --net sleep 100000 &
-  holders[$host]=$!
-  while [[ $(readlink "/proc/${holders[$host]}/ns/net") == $(readlink /proc/self/ns/net) ]]; do sleep 0.01; done
-  ip link add "h$host" type veth peer name "port$host"
-  ip link set "h$host" netns "${holders[$host]}"
-  ip link set "port$host" master switch up
-  on "$host" ip link set lo up
-  on "$host" ip addr add "10.77.0.$host/24" dev "h$host"
-  on "$host" ip link set "h$host" up multicast on
-  on "$host" ip route add 224.0.0.0/4 dev "h$host"
-}
-for host in 1 2 3 4 5; do add_host "$host"; done
+source "$(dirname "$0")/hosts.sh"
+trap stop EXIT
+switch
+for host in 1 2 3 4 5; do add_host "$host" 10.77.0 multicast; done
 # Host 5's link loses 5 % of the datagrams each way.
 on 5 nft add table ip link_loss
 on 5 nft add chain ip link_loss input "{ type filter hook input priority 0; }"
@@ -148,8 +121,7 @@ done
 
 # The gateway on host 4, with Foxglove's own protocol client beside it (loopback in host 4).
 if [[ -d $web_tests/node_modules ]] && command -v node >/dev/null; then
-  await_text "$work/serve.txt" "live view" || fail "no URL from the gateway on host 4" "$work/serve.txt"
-  port=$(sed -n 's#.*live view *http://[^:]*:\([0-9]*\)/.*#\1#p' "$work/serve.txt" | head -1)
+  port=$(gateway_port "$work/serve.txt") || fail "no URL from the gateway on host 4" "$work/serve.txt"
   expect 0 "a client of the gateway on host 4 watches both servers and steers BETA_" \
     on 4 node "$web_tests/servers_watch.mjs" "ws://127.0.0.1:$port/" --servers ALPHA_,BETA_ --seconds 3 --steer BETA_
   cat "$work/out"

@@ -28,19 +28,6 @@ trap cleanup EXIT
 
 source "$(dirname "$0")/checks.sh"
 
-# wait_for_url LOG: the port flagctl serve printed in LOG (it listens on port 0: a free one).
-wait_for_port() {
-  for _ in $(seq 100); do
-    if grep -q "live view" "$1"; then
-      sed -n 's#.*live view *https\?://[^:]*:\([0-9]*\)/.*#\1#p' "$1" | head -1
-      return
-    fi
-    sleep 0.1
-  done
-  echo "no URL in $1" >&2
-  cat "$1" >&2
-  return 1
-}
 
 echo "-- the gateway's command line"
 expect 0 "flagctl serve --help" "$flagctl" serve --help
@@ -50,7 +37,7 @@ contains "expected HOST:PORT" "  and says what is expected"
 "$flagctl" --prefix $prefix serve --listen 0.0.0.0:0 --record-dir "$work/rec" --tls-dir "$work/tls" \
   >"$work/open.log" 2>&1 &
 open_gateway=$!
-open_port=$(wait_for_port "$work/open.log")
+open_port=$(gateway_port "$work/open.log")
 if grep -Eq "live view +https://.*/\?token=[0-9a-f]{32}$" "$work/open.log"; then
   pass "beyond loopback without --token, a token is generated and printed with an https:// URL"
 else
@@ -63,7 +50,7 @@ open_token=$(sed -n 's#.*live view *https://[^?]*?token=\([0-9a-f]*\)$#\1#p' "$w
 # Another pair, for a client that trusts the wrong certificate and for a key that does not match.
 "$flagctl" --prefix $prefix serve --listen 0.0.0.0:0 --tls-dir "$work/other-tls" >"$work/other.log" 2>&1 &
 other_gateway=$!
-wait_for_port "$work/other.log" >/dev/null
+gateway_port "$work/other.log" >/dev/null
 kill -TERM $other_gateway
 wait $other_gateway || true
 if node "$tests/tls_test.mjs" "$open_port" "$open_token" "$work/tls/gateway.crt" "$work/other-tls/gateway.crt" \
@@ -91,7 +78,7 @@ done
 "$flagctl" --prefix $prefix serve --listen 127.0.0.1:0 --token "$token" --record-dir "$work/rec" \
   >"$work/serve.log" 2>&1 &
 gateway=$!
-port=$(wait_for_port "$work/serve.log")
+port=$(gateway_port "$work/serve.log")
 pass "flagctl serve listens (port $port)"
 
 run_node() {  # run_node DESCRIPTION SCRIPT ARGS...: a Node test; its checks are counted as one

@@ -1,19 +1,6 @@
 # What the tests of recordings that end badly (killed, a full disk) share, sourced after
 # checks.sh; they set $work, $flagd, $flagctl and $prefix.
 
-# gateway_port LOG: the port `flagctl serve --listen 127.0.0.1:0` printed in LOG (at most 10 s).
-gateway_port() {
-  for _ in $(seq 100); do
-    if grep -q "live view" "$1"; then
-      sed -n 's#.*live view *http://[^:]*:\([0-9]*\)/.*#\1#p' "$1" | head -1
-      return 0
-    fi
-    sleep 0.1
-  done
-  echo "no URL in $1" >&2
-  return 1
-}
-
 # status_step: the step of the server's last STATUS (flagctl status), or -1 without an answer.
 status_step() {
   "$flagctl" --prefix "$prefix" --timeout 1 status 2>/dev/null |

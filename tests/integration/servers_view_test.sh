@@ -25,19 +25,6 @@ trap cleanup EXIT
 
 source "$(dirname "$0")/checks.sh"
 
-# wait_for_url LOG: the address flagctl serve printed in LOG (it listens on port 0: a free one).
-wait_for_url() {
-  for _ in $(seq 100); do
-    if grep -q "live view" "$1"; then
-      sed -n 's#.*live view *\(https\?://[^ ]*\).*#\1#p' "$1" | head -1
-      return
-    fi
-    sleep 0.1
-  done
-  echo "no URL in $1" >&2
-  cat "$1" >&2
-  return 1
-}
 
 echo "-- two servers"
 "$flagd" --prefix ALPHA_ --set frame_rate=10 --log-level warn >"$work/ALPHA_.log" 2>&1 &
@@ -54,7 +41,7 @@ done
 echo "-- one gateway for both: flagctl serve without --prefix serves every server it hears"
 "$flagctl" serve --listen 127.0.0.1:0 >"$work/serve.log" 2>&1 &
 gateway=$!
-url=$(wait_for_url "$work/serve.log")
+url=$(gateway_url "$work/serve.log")
 pass "flagctl serve listens ($url)"
 if grep -q "servers every server heard" "$work/serve.log"; then pass "  for every server heard"
 else fail "  not for every server heard" "$work/serve.log"; fi

@@ -16,28 +16,12 @@ done
 [[ -f $lcm_jar ]] || { echo "skipped: no $lcm_jar (liblcm-java)"; exit 77; }
 flagd=$build/server/flagd flagctl=$build/client/flagctl
 work=$(mktemp -d)
-holders=()
 trap 'rm -rf "$work"' EXIT  # the rest ends with the test's PID namespace (scripts/netns-run)
 source "$(dirname "$0")/checks.sh"
+source "$(dirname "$0")/hosts.sh"
 
-ip link add switch type bridge
-ip link set switch up
-on() {  # on HOST COMMAND...: COMMAND in host HOST's network namespace
-  local host=$1
-  shift
-  nsenter -t "${holders[$host]}" -n "$@"
-}
-for host in 1 2 3; do  # a namespace each, on the bridge, 10.78.0.HOST/24, no multicast route
-  unshare --net sleep 100000 &
-  holders[$host]=$!
-  while [[ $(readlink "/proc/${holders[$host]}/ns/net") == $(readlink /proc/self/ns/net) ]]; do sleep 0.01; done
-  ip link add "h$host" type veth peer name "port$host"
-  ip link set "h$host" netns "${holders[$host]}"
-  ip link set "port$host" master switch up
-  on "$host" ip link set lo up
-  on "$host" ip addr add "10.78.0.$host/24" dev "h$host"
-  on "$host" ip link set "h$host" up
-done
+switch
+for host in 1 2 3; do add_host "$host" 10.78.0; done  # no multicast route
 bus=tcpq://10.78.0.1:7700
 
 nsenter -t "${holders[1]}" -n java -cp "$lcm_jar" lcm.lcm.TCPService 7700 >"$work/hub.log" 2>&1 &
