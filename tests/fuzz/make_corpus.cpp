@@ -234,22 +234,27 @@ void LogSeeds(const std::string& log_path) {
   Write("replay", "session", log);
 }
 
+/// A Foxglove client's messages as the gateway targets' records (gateway_session.hpp): a text
+/// message, a service call and a client publish.
+Bytes TextRecord(const json& message) { return fuzz::EncodeRecord(0, Text(message.dump())); }
+
+Bytes CallRecord(uint32_t service, uint32_t id, const json& request) {
+  std::string frame(1, char(gateway::kServiceCallRequest));
+  gateway::AppendU32(&frame, service);
+  gateway::AppendU32(&frame, id);
+  gateway::AppendU32(&frame, 4);
+  return fuzz::EncodeRecord(1, Text(frame + "json" + request.dump()));
+}
+
+Bytes PublishRecord(uint32_t channel, const json& message) {
+  std::string frame(1, char(gateway::kClientMessageData));
+  gateway::AppendU32(&frame, channel);
+  return fuzz::EncodeRecord(1, Text(frame + message.dump()));
+}
+
 /// What a Foxglove client sends the gateway, as records: 0 text, 1 binary, 2 the clock moves.
 void ProtocolSeeds() {
   using namespace gateway;
-  const auto text = [](const json& message) { return fuzz::EncodeRecord(0, Text(message.dump())); };
-  const auto call = [](uint32_t service, uint32_t id, const json& request) {
-    std::string frame(1, char(kServiceCallRequest));
-    AppendU32(&frame, service);
-    AppendU32(&frame, id);
-    AppendU32(&frame, 4);
-    return fuzz::EncodeRecord(1, Text(frame + "json" + request.dump()));
-  };
-  const auto publish = [](uint32_t channel, const json& message) {
-    std::string frame(1, char(kClientMessageData));
-    AppendU32(&frame, channel);
-    return fuzz::EncodeRecord(1, Text(frame + message.dump()));
-  };
   const Bytes tick = fuzz::EncodeRecord(2, {5});
   const json subscribe = {{"op", "subscribe"},
                           {"subscriptions",
@@ -257,51 +262,101 @@ void ProtocolSeeds() {
                             {{"id", 2}, {"channelId", kAcksChannel}},
                             {{"id", 3}, {"channelId", kTilesChannel}}}}};
   Write("gateway_protocol", "subscribe",
-        Concatenated({text(subscribe), text({{"op", "unsubscribe"}, {"subscriptionIds", {2}}})}));
-  Write("gateway_protocol", "parameters",
-        Concatenated(
-            {text({{"op", "subscribeParameterUpdates"}, {"parameterNames", json::array()}}),
-             text({{"op", "getParameters"}, {"parameterNames", {"stiffness", "cols"}}, {"id", "g1"}}),
-             text({{"op", "setParameters"},
-                   {"parameters",
-                    {{{"name", "stiffness"}, {"value", 2500}}, {{"name", "shading"}, {"value", "flat"}}}},
-                   {"id", "s1"}}),
-             tick}));
+        Concatenated({TextRecord(subscribe), TextRecord({{"op", "unsubscribe"}, {"subscriptionIds", {2}}})}));
+  Write(
+      "gateway_protocol", "parameters",
+      Concatenated(
+          {TextRecord({{"op", "subscribeParameterUpdates"}, {"parameterNames", json::array()}}),
+           TextRecord({{"op", "getParameters"}, {"parameterNames", {"stiffness", "cols"}}, {"id", "g1"}}),
+           TextRecord({{"op", "setParameters"},
+                       {"parameters",
+                        {{{"name", "stiffness"}, {"value", 2500}}, {{"name", "shading"}, {"value", "flat"}}}},
+                       {"id", "s1"}}),
+           tick}));
   Write("gateway_protocol", "wind_service",
-        Concatenated({call(kWindService, 1, {{"velocity", {8, 0, 2}}, {"gust", 0.3}, {"ramp", 1}}), tick}));
-  Write("gateway_protocol", "set_service",
         Concatenated(
-            {call(kSetService, 2, {{"parameters", {{"damping", 0.1}, {"relative_wind", true}}}}), tick}));
+            {CallRecord(kWindService, 1, {{"velocity", {8, 0, 2}}, {"gust", 0.3}, {"ramp", 1}}), tick}));
+  Write(
+      "gateway_protocol", "set_service",
+      Concatenated(
+          {CallRecord(kSetService, 2, {{"parameters", {{"damping", 0.1}, {"relative_wind", true}}}}), tick}));
   Write("gateway_protocol", "camera_service",
-        Concatenated({call(kCameraService, 3, {{"operation", "orbit"}, {"degrees", 30}, {"degrees2", 10}}),
-                      call(kCameraService, 4, {{"operation", "size"}, {"width", 320}, {"height", 200}}),
-                      call(kCameraService, 5, {{"operation", "look_at"}, {"vector", {1, 2, 0}}}), tick}));
+        Concatenated(
+            {CallRecord(kCameraService, 3, {{"operation", "orbit"}, {"degrees", 30}, {"degrees2", 10}}),
+             CallRecord(kCameraService, 4, {{"operation", "size"}, {"width", 320}, {"height", 200}}),
+             CallRecord(kCameraService, 5, {{"operation", "look_at"}, {"vector", {1, 2, 0}}}), tick}));
   Write("gateway_protocol", "keyframe_service",
         Concatenated(
-            {call(kKeyframeService, 6,
-                  {{"operation", "add"},
-                   {"key",
-                    {{"time", 0},
-                     {"law", "cubic"},
-                     {"wind", {{"velocity", {7, 0, 0}}, {"gust", 0.2}}},
-                     {"parameters", {{"stiffness", 1500}}},
-                     {"camera", {{"eye", {2.6, 1.9, 4.4}}, {"target", {0.8, 2.2, 0}}, {"fov", 40}}}}}}),
-             call(kKeyframeService, 7, {{"operation", "play"}}),
-             call(kKeyframeService, 8, {{"operation", "speed"}, {"speed", 2}}), tick}));
+            {CallRecord(kKeyframeService, 6,
+                        {{"operation", "add"},
+                         {"key",
+                          {{"time", 0},
+                           {"law", "cubic"},
+                           {"wind", {{"velocity", {7, 0, 0}}, {"gust", 0.2}}},
+                           {"parameters", {{"stiffness", 1500}}},
+                           {"camera", {{"eye", {2.6, 1.9, 4.4}}, {"target", {0.8, 2.2, 0}}, {"fov", 40}}}}}}),
+             CallRecord(kKeyframeService, 7, {{"operation", "play"}}),
+             CallRecord(kKeyframeService, 8, {{"operation", "speed"}, {"speed", 2}}), tick}));
   Write("gateway_protocol", "refresh_record",
-        Concatenated({call(kRefreshService, 9, json::object()),
-                      call(kRecordService, 10, {{"action", "status"}}),
-                      call(kRecordService, 11, {{"action", "start"}}), tick,
-                      call(kRecordService, 12, {{"action", "stop"}})}));
+        Concatenated({CallRecord(kRefreshService, 9, json::object()),
+                      CallRecord(kRecordService, 10, {{"action", "status"}}),
+                      CallRecord(kRecordService, 11, {{"action", "start"}}), tick,
+                      CallRecord(kRecordService, 12, {{"action", "stop"}})}));
   Write("gateway_protocol", "client_publish",
-        Concatenated({text({{"op", "advertise"},
-                            {"channels",
-                             {{{"id", 7},
-                               {"topic", "/flag/wind"},
-                               {"encoding", "json"},
-                               {"schemaName", "flagsim.WindRequest"}}}}}),
-                      publish(7, {{"velocity", {3, 0, 1}}}), tick,
-                      text({{"op", "unadvertise"}, {"channelIds", {7}}})}));
+        Concatenated({TextRecord({{"op", "advertise"},
+                                  {"channels",
+                                   {{{"id", 7},
+                                     {"topic", "/flag/wind"},
+                                     {"encoding", "json"},
+                                     {"schemaName", "flagsim.WindRequest"}}}}}),
+                      PublishRecord(7, {{"velocity", {3, 0, 1}}}), tick,
+                      TextRecord({{"op", "unadvertise"}, {"channelIds", {7}}})}));
+}
+
+/// The gateway of several servers: ALPHA_ in slot 1, BETA_ in slot 2 (ids 16 s + base); a
+/// record with selector 3 is a STATUS of the server its byte picks (0 ALPHA_, 1 BETA_).
+void GatewayServersSeeds() {
+  using namespace gateway;
+  const auto in = [](uint32_t slot, uint32_t base) { return IdIn(slot, base); };
+  const Bytes tick = fuzz::EncodeRecord(2, {5});
+  const Bytes silence = fuzz::EncodeRecord(2, {60});  // 6 s: both withdrawn
+  const Bytes alpha_status = fuzz::EncodeRecord(3, {0});
+  Write("gateway_servers", "subscribe_both",
+        Concatenated({TextRecord({{"op", "subscribe"},
+                                  {"subscriptions",
+                                   {{{"id", 1}, {"channelId", in(1, kTilesChannel)}},
+                                    {{"id", 2}, {"channelId", in(2, kTilesChannel)}},
+                                    {{"id", 3}, {"channelId", in(2, kAcksChannel)}},
+                                    {{"id", 4}, {"channelId", kServersChannel}}}}}),
+                      tick}));
+  Write("gateway_servers", "parameters",
+        Concatenated({TextRecord({{"op", "getParameters"}, {"parameterNames", json::array()}, {"id", "g"}}),
+                      TextRecord({{"op", "setParameters"},
+                                  {"parameters", {{{"name", "/BETA_/stiffness"}, {"value", 2500}}}},
+                                  {"id", "s"}}),
+                      TextRecord({{"op", "setParameters"},
+                                  {"parameters",
+                                   {{{"name", "/ALPHA_/damping"}, {"value", 0.1}},
+                                    {{"name", "/BETA_/damping"}, {"value", 0.1}}}},
+                                  {"id", "mixed"}}),
+                      tick}));
+  Write("gateway_servers", "services",
+        Concatenated(
+            {CallRecord(in(1, kWindService), 1, {{"velocity", {8, 0, 2}}}),
+             CallRecord(in(2, kCameraService), 2, {{"operation", "size"}, {"width", 320}, {"height", 200}}),
+             CallRecord(in(2, kRecordService), 3, {{"action", "status"}}), tick}));
+  Write("gateway_servers", "withdrawn_and_back",
+        Concatenated({TextRecord({{"op", "subscribe"},
+                                  {"subscriptions", {{{"id", 1}, {"channelId", in(1, kStateChannel)}}}}}),
+                      silence, CallRecord(in(1, kWindService), 4, {{"velocity", {1, 0, 0}}}), alpha_status,
+                      CallRecord(in(1, kWindService), 5, {{"velocity", {2, 0, 0}}}), tick}));
+  Write("gateway_servers", "client_publish",
+        Concatenated({TextRecord({{"op", "advertise"},
+                                  {"channels",
+                                   {{{"id", 7}, {"topic", "/ALPHA_/flag/wind"}, {"encoding", "json"}},
+                                    {{"id", 8}, {"topic", "/flag/wind"}, {"encoding", "json"}}}}}),
+                      PublishRecord(7, {{"velocity", {3, 0, 1}}}),
+                      PublishRecord(8, {{"velocity", {3, 0, 1}}}), tick}));
 }
 
 /// The HTTP target: the first byte picks the access policy (http_request_fuzz.cpp), then the request.
@@ -418,6 +473,7 @@ int main(int argc, char** argv) {
   LogSeeds(log_path);
   fs::remove(log_path);
   ProtocolSeeds();
+  GatewayServersSeeds();
   HttpSeeds();
   SceneSeeds(source);
   PngSeeds();

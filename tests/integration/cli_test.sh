@@ -46,6 +46,12 @@ contains "--prefix: 'A B' is not a channel prefix" "  that names the prefix"
 expect 2 "serve --listen with a port that is not all digits is a usage error" "$flagctl" --prefix NOBODY_ \
   serve --listen 127.0.0.1:80x
 contains "the port '80x' is not one; allowed 0 .. 65535 in digits" "  that names the port and what is allowed"
+expect 2 "serve --servers with a prefix that is none is a usage error" "$flagctl" serve --servers ALPHA_,my-prefix \
+  --listen 127.0.0.1:0
+contains "--servers my-prefix: 'my-prefix' is not a channel prefix; allowed 1 .. 52 letters, digits and '_', or all" \
+  "  that names it and what is allowed"
+expect 4 "flagctl servers with no server on the bus" "$flagctl" --timeout 0.5 servers
+contains "no server's STATUS on" "  says so"
 expect 2 "watch --duration -1 is a usage error" "$flagctl" --prefix NOBODY_ watch --duration -1
 contains "--duration: -1 is out of range; allowed 0 or more" "  with the bound as typed"
 expect 2 "record --duration -1 is a usage error" "$flagctl" --prefix NOBODY_ record -o "$work/never.lcmlog" \

@@ -13,8 +13,7 @@ import { openSync, readFileSync, writeFileSync } from "node:fs";
 import { createHash } from "node:crypto";
 import { promisify } from "node:util";
 
-import { chromium } from "playwright-core";
-
+import { launchChromium } from "./browser.mjs";
 import { check, run, section, waitFor } from "./checks.mjs";
 import { encodePngRGBA, readPngRGB } from "./png.mjs";
 
@@ -516,11 +515,7 @@ async function checkServerStopAndRestart(page) {
 }
 
 await run(async () => {
-  const browser = await chromium.launch({
-    executablePath: "/usr/bin/chromium",
-    args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
-           "--disable-component-update", "--disable-sync"],
-  });
+  const browser = await launchChromium();
   try {
     const page = await browser.newPage({ viewport: { width: 1600, height: 1000 } });
     const errors = [];
