@@ -53,8 +53,7 @@ std::string SceneText(const params_t& params) {
 ServerLink::ServerLink(Bus& bus, const std::string& prefix, uint32_t slot, std::string path,
                        CommandRelay& relay, const RecorderMaker& make_recorder, std::function<double()> clock,
                        Hooks hooks)
-    : bus_(bus),
-      channels_(prefix),
+    : channels_(prefix),
       slot_(slot),
       path_(std::move(path)),
       relay_(relay),

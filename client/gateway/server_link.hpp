@@ -94,7 +94,6 @@ class ServerLink {
   void NoteServer(int64_t server_id);
   void Publish(uint32_t base, int64_t utime, std::string payload);
 
-  Bus& bus_;
   Channels channels_;
   uint32_t slot_;
   std::string path_;
