@@ -32,8 +32,11 @@ class PacedPublisher {
     Enqueue(channel, Publisher::Encode(message));
   }
 
-  /// Messages not yet published.
+  /// Messages not yet published: those queued and the one on its way out.
   size_t queued() const;
+
+  /// Waits until every message queued so far has been published.
+  void WaitUntilSent();
 
  private:
   struct Item {
@@ -45,8 +48,10 @@ class PacedPublisher {
   Publisher& publisher_;
   PublishPacing pacing_;  ///< on wall time, s
   mutable std::mutex mutex_;
-  std::condition_variable wake_;
+  std::condition_variable wake_;  ///< a message queued, or stopping
+  std::condition_variable sent_;  ///< the last message queued published
   std::deque<Item> queue_;
+  bool publishing_ = false;  ///< an item is out of queue_ but not yet published
   bool stopping_ = false;
   std::thread thread_;
 };

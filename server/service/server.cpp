@@ -1,12 +1,10 @@
 #include "server/service/server.hpp"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <thread>
-#include <utility>
-
 #include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
 
 #include "messages/utime.hpp"
 #include "server/service/command_apply.hpp"
@@ -72,7 +70,7 @@ void Server::Run(const std::atomic<bool>& stop) {
 
 void Server::DrainFrames() {
   frames_.Drain();
-  while (paced_.queued() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  paced_.WaitUntilSent();
 }
 
 bool Server::Ended() const {
