@@ -87,6 +87,7 @@ void GroundShadow::Draw(const Eigen::Vector2f& a, const Eigen::Vector2f& b, cons
       left = std::min(left, x);
       right = std::max(right, x);
     }
+    if (left > right) continue;  // the line only touches a corner (the top one): no centre inside
     const int first = std::max(0, int(std::ceil(left - 0.5f))),
               last = std::min(kTexels - 1, int(std::floor(right - 0.5f)));
     float* row = &texels_[size_t(y) * kTexels];

@@ -134,5 +134,23 @@ TEST(GroundShadow, ACutSurfaceCastsTheShadowOfWhatIsLeft) {
   EXPECT_NEAR(shadow.At(0.0f, -0.3f), 0.0f, 1e-6f);  // under the clear half: in the sun
 }
 
+TEST(GroundShadow, ATriangleWhoseTopCornerIsOnARowsCentreLine) {
+  // The sun overhead; a level triangle 1.5 m across makes the map 2 m across (with its margins),
+  // 1/128 m a texel, from z = -1 m. Its top corner, at z = 0.75 - 1/256 m, falls on texel
+  // row 223's centre line, 223.5 texels up: that row meets the triangle only at the corner, and
+  // it must draw nothing there (before, it took its span's ends as infinite).
+  RenderScene scene = SquareOverGround(2.0f, Eigen::Vector3f(0, 1, 0));
+  Mesh& triangle = scene.meshes[0];
+  triangle.positions = {{-0.75f, 2.0f, -0.75f}, {0.75f, 2.0f, -0.75f}, {0.0f, 2.0f, 0.75f - 1.0f / 256}};
+  triangle.normals.assign(3, Eigen::Vector3f(0, 1, 0));
+  triangle.uvs.assign(3, Eigen::Vector2f(0, 0));
+  triangle.triangles = {{0, 1, 2}};
+  GroundShadow shadow;
+  shadow.Cast(scene);
+  ASSERT_FALSE(shadow.empty());
+  EXPECT_NEAR(shadow.At(0.0f, -0.3f), 1.0f, 1e-6f);  // well inside the triangle's shadow
+  EXPECT_NEAR(shadow.At(0.5f, 0.5f), 0.0f, 1e-6f);   // beside its top corner: in the sun
+}
+
 }  // namespace
 }  // namespace flagsim::render
